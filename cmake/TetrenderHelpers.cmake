@@ -1,0 +1,37 @@
+# tr_add_module(name SOURCES a.cpp ... HEADERS a.h ... DEPS tetrender::x ... [PRIVATE_DEPS ...])
+# Adds library tetrender_<name> with alias tetrender::<name>, warnings on, headers installed
+# under include/tetrender/<folder of the first header>.
+function(tr_add_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;HEADERS;DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(tetrender_${name} ${ARG_SOURCES})
+  add_library(tetrender::${name} ALIAS tetrender_${name})
+  set_target_properties(tetrender_${name} PROPERTIES EXPORT_NAME ${name}
+                                                     POSITION_INDEPENDENT_CODE ON)
+  target_include_directories(tetrender_${name} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+    $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated>
+    $<INSTALL_INTERFACE:include/tetrender>)
+  target_link_libraries(tetrender_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS}
+                                                                   tetrender_warnings)
+  target_compile_features(tetrender_${name} PUBLIC cxx_std_20)
+  foreach(header ${ARG_HEADERS})
+    get_filename_component(dir ${header} DIRECTORY)
+    file(RELATIVE_PATH rel ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/${dir})
+    install(FILES ${header} DESTINATION include/tetrender/${rel})
+  endforeach()
+  install(TARGETS tetrender_${name} EXPORT tetrenderTargets
+          ARCHIVE DESTINATION lib LIBRARY DESTINATION lib RUNTIME DESTINATION bin)
+endfunction()
+
+# tr_add_test(name SOURCES ... DEPS ... LABELS ...): a GoogleTest executable registered with
+# ctest, every test case labelled.
+function(tr_add_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main
+                                        tetrender_warnings)
+  target_compile_definitions(${name} PRIVATE
+    TETRENDER_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    TETRENDER_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data")
+  gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" DISCOVERY_TIMEOUT 60)
+endfunction()

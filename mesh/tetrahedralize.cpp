@@ -1,0 +1,376 @@
+#include <mesh/tetrahedralize.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+
+namespace tr {
+namespace {
+
+using FaceList = std::vector<std::vector<int>>;
+
+// Faces of the linear cell types in VTK's node order, counter-clockwise seen from outside a
+// cell of positive (VTK) orientation.
+const FaceList& faces_of(CellType type) {
+    static const FaceList hexahedron = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4},
+                                        {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
+    static const FaceList wedge = {{0, 1, 2}, {3, 5, 4}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
+    static const FaceList pyramid = {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+    static const FaceList pentagonal_prism = {{0, 4, 3, 2, 1}, {5, 6, 7, 8, 9}, {0, 1, 6, 5},
+                                              {1, 2, 7, 6},    {2, 3, 8, 7},    {3, 4, 9, 8},
+                                              {4, 0, 5, 9}};
+    static const FaceList hexagonal_prism = {
+        {0, 5, 4, 3, 2, 1}, {6, 7, 8, 9, 10, 11}, {0, 1, 7, 6},   {1, 2, 8, 7},
+        {2, 3, 9, 8},       {3, 4, 10, 9},        {4, 5, 11, 10}, {5, 0, 6, 11}};
+    static const FaceList none;
+    switch (type) {
+        case CellType::kHexahedron:
+            return hexahedron;
+        case CellType::kWedge:
+            return wedge;
+        case CellType::kPyramid:
+            return pyramid;
+        case CellType::kPentagonalPrism:
+            return pentagonal_prism;
+        case CellType::kHexagonalPrism:
+            return hexagonal_prism;
+        default:
+            return none;
+    }
+}
+
+bool is_finite(const Vec3& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+std::string cell_where(std::size_t c) { return "cell " + std::to_string(c); }
+
+// Shortest corner-to-corner distance of any cell at each point (for tolerant merging).
+std::vector<double> shortest_incident_edges(const UnstructuredMesh& in) {
+    std::vector<double> local(in.points.size(), std::numeric_limits<double>::infinity());
+    for (std::size_t c = 0; c < in.num_cells(); ++c) {
+        const int corners = cell_corner_count(in.types[c]);
+        const std::int64_t* nodes = in.connectivity.data() + in.offsets[c];
+        for (int i = 0; i < corners; ++i) {
+            for (int j = i + 1; j < corners; ++j) {
+                const double d = glm::length(in.points[nodes[i]] - in.points[nodes[j]]);
+                if (d > 0) {
+                    local[nodes[i]] = std::min(local[nodes[i]], d);
+                    local[nodes[j]] = std::min(local[nodes[j]], d);
+                }
+            }
+        }
+    }
+    return local;
+}
+
+}  // namespace
+
+std::vector<PointId> find_coincident_points(const std::vector<Vec3>& points,
+                                            double tolerance_fraction,
+                                            const std::vector<double>& local_length) {
+    const std::size_t n = points.size();
+    std::vector<PointId> representative(n);
+    std::iota(representative.begin(), representative.end(), PointId{0});
+    if (tolerance_fraction <= 0) {
+        std::vector<PointId> order(n);
+        std::iota(order.begin(), order.end(), PointId{0});
+        auto less = [&](PointId a, PointId b) {
+            const Vec3& p = points[a];
+            const Vec3& q = points[b];
+            if (p.x != q.x) return p.x < q.x;
+            if (p.y != q.y) return p.y < q.y;
+            if (p.z != q.z) return p.z < q.z;
+            return a < b;
+        };
+        std::sort(order.begin(), order.end(), less);
+        for (std::size_t i = 1; i < n; ++i) {
+            if (points[order[i]] == points[order[i - 1]]) {
+                representative[order[i]] = representative[order[i - 1]];
+            }
+        }
+        return representative;
+    }
+    // Tolerant: hash points into cubes as large as the largest merge radius, compare with the
+    // 27 cubes around; merge i into the lowest earlier point within its radius.
+    std::vector<double> radius(n, 0.0);
+    double max_radius = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double l = i < local_length.size() ? local_length[i] : 0.0;
+        radius[i] = std::isfinite(l) ? tolerance_fraction * l : 0.0;
+        max_radius = std::max(max_radius, radius[i]);
+    }
+    if (max_radius <= 0) return find_coincident_points(points, 0.0, {});
+    auto key_of = [&](const Vec3& p, int dx, int dy, int dz) {
+        const auto ix = static_cast<std::int64_t>(std::floor(p.x / max_radius)) + dx;
+        const auto iy = static_cast<std::int64_t>(std::floor(p.y / max_radius)) + dy;
+        const auto iz = static_cast<std::int64_t>(std::floor(p.z / max_radius)) + dz;
+        return static_cast<std::uint64_t>(ix * 73856093) ^
+               static_cast<std::uint64_t>(iy * 19349663) ^
+               static_cast<std::uint64_t>(iz * 83492791);
+    };
+    std::unordered_multimap<std::uint64_t, PointId> grid;
+    grid.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        PointId best = static_cast<PointId>(i);
+        for (int dx = -1; dx <= 1; ++dx) {
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dz = -1; dz <= 1; ++dz) {
+                    auto range = grid.equal_range(key_of(points[i], dx, dy, dz));
+                    for (auto it = range.first; it != range.second; ++it) {
+                        const PointId j = it->second;
+                        const double r = std::min(radius[i], radius[j]);
+                        if (glm::length(points[i] - points[j]) <= r) {
+                            best = std::min(best, representative[j]);
+                        }
+                    }
+                }
+            }
+        }
+        representative[i] = best;
+        grid.emplace(key_of(points[i], 0, 0, 0), static_cast<PointId>(i));
+    }
+    return representative;
+}
+
+Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeOptions& options,
+                               TetrahedralizeReport* report_out) {
+    TetrahedralizeReport report;
+    const std::size_t num_cells = in.num_cells();
+    const std::size_t num_points = in.num_points();
+    if (num_cells == 0) {
+        return make_error(ErrorCode::kUnsupported,
+                          num_points == 0 ? "empty mesh: no points and no cells"
+                                          : "a point cloud (no cells): tetrahedralize it with "
+                                            "Delaunay (tetrahedralize --delaunay)");
+    }
+    if (num_points >= kNoCell) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "too many points: " + std::to_string(num_points));
+    }
+    if (in.offsets.size() != num_cells + 1 || in.offsets.front() != 0 ||
+        in.offsets.back() != static_cast<std::int64_t>(in.connectivity.size())) {
+        return make_error(ErrorCode::kInvalidMesh, "cell offsets do not match the connectivity");
+    }
+
+    // Validate every cell once; collect the kept ones.
+    report_progress(options.progress, "tetrahedralizing", 0.0);
+    std::vector<std::uint8_t> keep(num_cells, 1);
+    for (std::size_t c = 0; c < num_cells; ++c) {
+        const CellType type = in.types[c];
+        ++report.input_cells[type];
+        const std::int64_t begin = in.offsets[c];
+        const std::int64_t end = in.offsets[c + 1];
+        if (end < begin) {
+            return make_error(ErrorCode::kInvalidMesh, "cell offsets decrease", cell_where(c));
+        }
+        if (!is_supported_volume_cell(type)) {
+            if (options.skip_unsupported) {
+                keep[c] = 0;
+                ++report.num_skipped_cells;
+                continue;
+            }
+            return make_error(ErrorCode::kUnsupported,
+                              "cell type " + std::to_string(static_cast<int>(type)) + " (" +
+                                  std::string(cell_type_name(type)) +
+                                  ") cannot be split into tetrahedra",
+                              cell_where(c));
+        }
+        if (end - begin != cell_node_count(type)) {
+            return make_error(ErrorCode::kInvalidMesh,
+                              std::string(cell_type_name(type)) + " has " +
+                                  std::to_string(end - begin) + " nodes, expected " +
+                                  std::to_string(cell_node_count(type)),
+                              cell_where(c));
+        }
+        for (std::int64_t k = begin; k < end; ++k) {
+            const std::int64_t p = in.connectivity[k];
+            if (p < 0 || p >= static_cast<std::int64_t>(num_points)) {
+                return make_error(ErrorCode::kInvalidMesh,
+                                  "node " + std::to_string(p) + " out of range (" +
+                                      std::to_string(num_points) + " points)",
+                                  cell_where(c));
+            }
+        }
+        const int corners = cell_corner_count(type);
+        for (int k = 0; k < corners; ++k) {
+            const auto p = static_cast<std::size_t>(in.connectivity[begin + k]);
+            if (!is_finite(in.points[p])) {
+                return make_error(ErrorCode::kInvalidMesh,
+                                  "point " + std::to_string(p) + " has a non-finite coordinate",
+                                  "point " + std::to_string(p));
+            }
+        }
+        if (is_quadratic(type)) ++report.num_quadratic_cells;
+    }
+
+    // Merge coincident points, then keep only points used as corners (compacted, in order).
+    std::vector<PointId> representative;
+    if (options.merge_points) {
+        std::vector<double> local;
+        if (options.merge_tolerance > 0) local = shortest_incident_edges(in);
+        representative = find_coincident_points(in.points, options.merge_tolerance, local);
+    } else {
+        representative.resize(num_points);
+        std::iota(representative.begin(), representative.end(), PointId{0});
+    }
+    std::vector<PointId> new_index(num_points, kNoCell);
+    for (std::size_t c = 0; c < num_cells; ++c) {
+        if (!keep[c]) continue;
+        const int corners = cell_corner_count(in.types[c]);
+        for (int k = 0; k < corners; ++k) {
+            new_index[representative[in.connectivity[in.offsets[c] + k]]] = 0;
+        }
+    }
+    std::vector<PointId> kept_points;
+    for (std::size_t p = 0; p < num_points; ++p) {
+        if (new_index[p] == 0) {
+            new_index[p] = static_cast<PointId>(kept_points.size());
+            kept_points.push_back(static_cast<PointId>(p));
+        }
+    }
+    for (std::size_t p = 0; p < num_points; ++p) {
+        if (representative[p] != p) ++report.num_merged_points;
+    }
+    std::vector<Vec3> points(kept_points.size());
+    for (std::size_t i = 0; i < kept_points.size(); ++i) points[i] = in.points[kept_points[i]];
+
+    // Split each cell by the pulling triangulation (see the header).
+    std::vector<Tet> tets;
+    std::vector<CellId> sources;
+    tets.reserve(num_cells * 5);
+    sources.reserve(num_cells * 5);
+    const double tolerance = options.tet_options.degenerate_tolerance;
+    auto degenerate = [&](const Tet& t) {
+        if (t[0] == t[1] || t[0] == t[2] || t[0] == t[3] || t[1] == t[2] || t[1] == t[3] ||
+            t[2] == t[3]) {
+            return true;
+        }
+        const Vec3 &a = points[t[0]], &b = points[t[1]], &c = points[t[2]], &d = points[t[3]];
+        auto l2 = [](const Vec3& p, const Vec3& q) { return glm::dot(p - q, p - q); };
+        const double l =
+            std::sqrt(std::max({l2(a, b), l2(a, c), l2(a, d), l2(b, c), l2(b, d), l2(c, d)}));
+        return !(std::abs(orient3d(a, b, c, d)) > tolerance * l * l * l);
+    };
+    std::vector<PointId> corner(12);
+    std::vector<Tet> cell_tets;
+    const std::size_t progress_step = std::max<std::size_t>(num_cells / 100, 1);
+    for (std::size_t c = 0; c < num_cells; ++c) {
+        if (c % progress_step == 0) {
+            report_progress(options.progress, "tetrahedralizing",
+                            static_cast<double>(c) / static_cast<double>(num_cells));
+        }
+        if (!keep[c]) continue;
+        CellType type = linear_type(in.types[c]);
+        const int corners = cell_corner_count(type);
+        const std::int64_t* nodes = in.connectivity.data() + in.offsets[c];
+        for (int k = 0; k < corners; ++k) corner[k] = new_index[representative[nodes[k]]];
+        if (type == CellType::kVoxel) {
+            corner = {corner[0], corner[1], corner[3], corner[2],
+                      corner[4], corner[5], corner[7], corner[6]};
+            type = CellType::kHexahedron;
+        }
+        cell_tets.clear();
+        if (type == CellType::kTetra) {
+            cell_tets.push_back({corner[0], corner[1], corner[2], corner[3]});
+        } else {
+            const int apex_local = static_cast<int>(
+                std::min_element(corner.begin(), corner.begin() + corners) - corner.begin());
+            const PointId apex = corner[apex_local];
+            for (const std::vector<int>& face : faces_of(type)) {
+                bool has_apex = false;
+                for (int v : face) has_apex = has_apex || corner[v] == apex;
+                if (has_apex) continue;
+                const int n = static_cast<int>(face.size());
+                int start = 0;
+                for (int i = 1; i < n; ++i) {
+                    if (corner[face[i]] < corner[face[start]]) start = i;
+                }
+                const PointId s = corner[face[start]];
+                for (int i = 1; i + 1 < n; ++i) {
+                    const PointId b = corner[face[(start + i) % n]];
+                    const PointId d = corner[face[(start + i + 1) % n]];
+                    // (s, b, d) is outward; the apex is behind it: (s, d, b, apex) is positive.
+                    cell_tets.push_back({s, d, b, apex});
+                }
+            }
+        }
+        double cell_volume = 0.0;
+        std::size_t good = 0;
+        for (Tet& t : cell_tets) {
+            if (degenerate(t)) {
+                t[0] = kNoCell;
+                continue;
+            }
+            cell_volume += orient3d(points[t[0]], points[t[1]], points[t[2]], points[t[3]]);
+            ++good;
+        }
+        if (good == 0) {
+            ++report.num_degenerate_cells;
+            continue;
+        }
+        report.num_degenerate_tets += cell_tets.size() - good;
+        if (cell_volume < 0) ++report.num_inverted_cells;
+        for (const Tet& t : cell_tets) {
+            if (t[0] == kNoCell) continue;
+            tets.push_back(t);
+            sources.push_back(static_cast<CellId>(c));
+        }
+    }
+
+    TetRepairReport repair;
+    auto mesh_or = TetMesh::create(std::move(points), std::move(tets), std::move(sources),
+                                   options.tet_options, &repair);
+    if (!mesh_or.ok()) return mesh_or.error();
+    TetMesh mesh = std::move(mesh_or).value();
+
+    // Fields: point fields follow the kept points; cell fields go to every tet of their cell.
+    for (const Field& f : in.point_fields) {
+        if (f.num_tuples() != num_points) {
+            return make_error(ErrorCode::kInvalidMesh,
+                              "point field '" + f.name + "' has " + std::to_string(f.num_tuples()) +
+                                  " tuples for " + std::to_string(num_points) + " points");
+        }
+        Field out = f;
+        const auto nc = static_cast<std::size_t>(f.num_components);
+        std::visit(
+            [&](auto& dst) {
+                const auto& src = std::get<std::decay_t<decltype(dst)>>(f.values);
+                dst.resize(kept_points.size() * nc);
+                for (std::size_t i = 0; i < kept_points.size(); ++i) {
+                    for (std::size_t k = 0; k < nc; ++k)
+                        dst[i * nc + k] = src[kept_points[i] * nc + k];
+                }
+            },
+            out.values);
+        TR_TRY_STATUS(mesh.add_point_field(std::move(out)));
+    }
+    for (const Field& f : in.cell_fields) {
+        if (f.num_tuples() != num_cells) {
+            return make_error(ErrorCode::kInvalidMesh,
+                              "cell field '" + f.name + "' has " + std::to_string(f.num_tuples()) +
+                                  " tuples for " + std::to_string(num_cells) + " cells");
+        }
+        Field out = f;
+        const auto nc = static_cast<std::size_t>(f.num_components);
+        std::visit(
+            [&](auto& dst) {
+                const auto& src = std::get<std::decay_t<decltype(dst)>>(f.values);
+                dst.resize(mesh.num_tets() * nc);
+                for (std::size_t t = 0; t < mesh.num_tets(); ++t) {
+                    const std::size_t s = mesh.source_cell(static_cast<CellId>(t));
+                    for (std::size_t k = 0; k < nc; ++k) dst[t * nc + k] = src[s * nc + k];
+                }
+            },
+            out.values);
+        TR_TRY_STATUS(mesh.add_cell_field(std::move(out)));
+    }
+    report.num_tets = mesh.num_tets();
+    report_progress(options.progress, "tetrahedralizing", 1.0);
+    if (report_out) *report_out = report;
+    return mesh;
+}
+
+}  // namespace tr

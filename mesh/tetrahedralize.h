@@ -1,0 +1,63 @@
+#pragma once
+// Splits a mixed UnstructuredMesh into a conforming TetMesh: merges coincident points, splits
+// hexahedra, voxels, wedges, pyramids (and the corners of quadratic cells, and pentagonal and
+// hexagonal prisms) so that every quad face shared by two cells is cut along the same diagonal.
+//
+// The split is the "pulling" triangulation: each polygonal face is fanned from its vertex of
+// smallest (merged) global index, and each cell is the cone from its smallest-index vertex over
+// the faces that do not contain it. A face's triangulation thus depends only on its own global
+// ids, so neighbours agree: no cracks, no T-junctions. For a quad this is the diagonal through
+// its smallest-index vertex.
+
+#include <core/progress.h>
+#include <core/result.h>
+#include <mesh/cell_type.h>
+#include <mesh/tet_mesh.h>
+#include <mesh/unstructured_mesh.h>
+
+#include <cstddef>
+#include <map>
+
+namespace tr {
+
+struct TetrahedralizeOptions {
+    // Merge points with identical coordinates before splitting (Exodus block and .pvtu piece
+    // interfaces, O-grid seams). Off only to inspect a file as written.
+    bool merge_points = true;
+    // 0: merge exactly equal points only. > 0: also merge points closer than this fraction
+    // of the shortest edge at either point (e.g. 1e-6).
+    double merge_tolerance = 0.0;
+    // Cells of unsupported types (polygons, polyhedra, lines) are an error unless true: then
+    // they are skipped and counted.
+    bool skip_unsupported = false;
+    TetMeshCreateOptions tet_options;
+    ProgressFn progress;
+};
+
+struct TetrahedralizeReport {
+    std::map<CellType, std::size_t> input_cells;  // input cells by type
+    std::size_t num_quadratic_cells = 0;          // of which higher order: corners used
+    std::size_t num_merged_points = 0;            // points merged into another
+    std::size_t num_inverted_cells = 0;           // input cells with negative volume, fixed
+    std::size_t num_degenerate_cells = 0;         // input cells of zero volume, dropped
+    std::size_t num_degenerate_tets = 0;          // zero-volume tets dropped from kept cells
+    std::size_t num_skipped_cells = 0;            // unsupported cells skipped (see options)
+    std::size_t num_tets = 0;                     // tets in the result
+};
+
+// Converts `input` to tets. Point fields are kept (merged points keep the first point's
+// values); cell fields are copied to every tet of their cell. Errors: point cloud (no cells:
+// use delaunay_tetrahedralize), index out of range, non-finite point, unsupported cell type
+// (names the cell), a cell with the wrong node count. Cost: O(cells + points log points).
+Result<TetMesh> tetrahedralize(const UnstructuredMesh& input,
+                               const TetrahedralizeOptions& options = {},
+                               TetrahedralizeReport* report = nullptr);
+
+// Merges coincident points of `points` (exactly, or within tolerance as in
+// TetrahedralizeOptions). Returns for each point the index of its representative (the lowest
+// index among those merged; representatives map to themselves).
+std::vector<PointId> find_coincident_points(const std::vector<Vec3>& points,
+                                            double tolerance_fraction,
+                                            const std::vector<double>& local_length);
+
+}  // namespace tr
