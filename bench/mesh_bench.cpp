@@ -1,0 +1,110 @@
+// Mesh benchmarks: face adjacency (target: 1M tets in under 1 s on one core), the conforming
+// split, and bytes per tet for points + tets + one float scalar + adjacency (target <= 120).
+// Inputs: an n^3 grid of hexahedra split into 6 n^3 tets (about 1 point per 6 tets, typical
+// of tet meshes). n = 55 gives 1.0M tets, n = 119 gives 10.1M.
+#include <core/parallel.h>
+#include <mesh/face_adjacency.h>
+#include <mesh/tetrahedralize.h>
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+
+namespace tr {
+namespace {
+
+UnstructuredMesh hex_grid(int n) {
+    UnstructuredMesh m;
+    const int p = n + 1;
+    m.points.reserve(static_cast<std::size_t>(p) * p * p);
+    for (int k = 0; k < p; ++k)
+        for (int j = 0; j < p; ++j)
+            for (int i = 0; i < p; ++i) m.points.emplace_back(i, j, k + 0.001 * ((i * j) % 7));
+    auto id = [p](int i, int j, int k) { return static_cast<std::int64_t>((k * p + j) * p + i); };
+    m.offsets.reserve(static_cast<std::size_t>(n) * n * n + 1);
+    m.offsets.push_back(0);
+    for (int k = 0; k < n; ++k) {
+        for (int j = 0; j < n; ++j) {
+            for (int i = 0; i < n; ++i) {
+                const std::int64_t v[8] = {id(i, j, k),
+                                           id(i + 1, j, k),
+                                           id(i + 1, j + 1, k),
+                                           id(i, j + 1, k),
+                                           id(i, j, k + 1),
+                                           id(i + 1, j, k + 1),
+                                           id(i + 1, j + 1, k + 1),
+                                           id(i, j + 1, k + 1)};
+                m.connectivity.insert(m.connectivity.end(), v, v + 8);
+                m.offsets.push_back(static_cast<std::int64_t>(m.connectivity.size()));
+                m.types.push_back(CellType::kHexahedron);
+            }
+        }
+    }
+    return m;
+}
+
+// Built once per size and kept: generating 10M tets takes seconds.
+const TetMesh& tet_grid(int n) {
+    static std::map<int, std::unique_ptr<TetMesh>> cache;
+    auto& slot = cache[n];
+    if (!slot) {
+        auto mesh = tetrahedralize(hex_grid(n));
+        slot = std::make_unique<TetMesh>(std::move(mesh).value());
+        std::vector<float> scalar(slot->num_points());
+        for (std::size_t i = 0; i < scalar.size(); ++i) scalar[i] = static_cast<float>(i % 97);
+        (void)slot->add_point_field(make_float_field("scalar", 1, std::move(scalar)));
+    }
+    return *slot;
+}
+
+void BM_FaceAdjacency(benchmark::State& state) {
+    set_thread_count(1);
+    const TetMesh& mesh = tet_grid(static_cast<int>(state.range(0)));
+    std::size_t adjacency_bytes = 0;
+    for (auto _ : state) {
+        auto adjacency = build_face_adjacency(mesh);
+        benchmark::DoNotOptimize(adjacency);
+        adjacency_bytes = adjacency->neighbors.size() * sizeof(adjacency->neighbors[0]);
+    }
+    const double tets = static_cast<double>(mesh.num_tets());
+    // Points + tets + one float scalar + adjacency (source-cell ids and boundary list left
+    // out, as the budget states).
+    const double bytes =
+        static_cast<double>(mesh.num_points() * sizeof(Vec3) + mesh.num_tets() * sizeof(Tet) +
+                            mesh.num_points() * sizeof(float) + adjacency_bytes);
+    state.counters["tets"] = tets;
+    state.counters["bytes_per_tet"] = bytes / tets;
+    state.counters["all_bytes_per_tet"] =
+        static_cast<double>(mesh.byte_size() + adjacency_bytes) / tets;
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * mesh.num_tets()));
+}
+BENCHMARK(BM_FaceAdjacency)->Arg(24)->Arg(55)->Arg(119)->Unit(benchmark::kMillisecond);
+
+void BM_TetrahedralizeHexGrid(benchmark::State& state) {
+    set_thread_count(1);
+    const UnstructuredMesh input = hex_grid(static_cast<int>(state.range(0)));
+    std::size_t tets = 0;
+    for (auto _ : state) {
+        auto mesh = tetrahedralize(input);
+        tets = mesh->num_tets();
+        benchmark::DoNotOptimize(mesh);
+    }
+    state.counters["tets"] = static_cast<double>(tets);
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * tets));
+}
+BENCHMARK(BM_TetrahedralizeHexGrid)->Arg(24)->Arg(55)->Unit(benchmark::kMillisecond);
+
+void BM_Convexity(benchmark::State& state) {
+    const TetMesh& mesh = tet_grid(static_cast<int>(state.range(0)));
+    const auto adjacency = build_face_adjacency(mesh);
+    for (auto _ : state) benchmark::DoNotOptimize(check_convexity(mesh, *adjacency));
+    state.SetItemsProcessed(
+        static_cast<std::int64_t>(state.iterations() * adjacency->boundary_faces.size()));
+}
+BENCHMARK(BM_Convexity)->Arg(24)->Arg(55)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace tr
+
+BENCHMARK_MAIN();

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds tetrender and runs the built-in demo.
+# Usage: scripts/demo.sh [-o DIR]   (outputs go to DIR, default out/)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/packages.sh
+out=out
+while [ $# -gt 0 ]; do
+  case "$1" in
+    -o) out="$2"; shift ;;
+    -h|--help) sed -n '2,3p' "$0"; exit 0 ;;
+    *) echo "demo.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+ensure_packages
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j "$(nproc)" --target tetrender
+mkdir -p "$out"
+build/apps/tetrender demo --mesh-out "$out/demo.vtu"

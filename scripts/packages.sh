@@ -1,0 +1,27 @@
+# Debian 12 packages tetrender builds and tests with; sourced by test.sh and demo.sh.
+# ensure_packages: installs the missing ones (as root), or prints the apt-get line and fails.
+
+TETRENDER_PACKAGES=(
+  cmake make g++ pkg-config clang-format
+  libvtk9-dev libcgal-dev libtet1.5-dev libtbb-dev libglm-dev libpng-dev
+  nlohmann-json3-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+ensure_packages() {
+  local missing=() pkg
+  for pkg in "${TETRENDER_PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
+      missing+=("$pkg")
+    fi
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "tetrender needs these Debian packages; as root, run:" >&2
+    echo "  apt-get update && apt-get install -y --no-install-recommends ${missing[*]}" >&2
+    return 1
+  fi
+  echo "installing: ${missing[*]}" >&2
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
