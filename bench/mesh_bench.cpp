@@ -8,8 +8,11 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <map>
 #include <memory>
+#include <numeric>
+#include <random>
 
 namespace tr {
 namespace {
@@ -80,6 +83,34 @@ void BM_FaceAdjacency(benchmark::State& state) {
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * mesh.num_tets()));
 }
 BENCHMARK(BM_FaceAdjacency)->Arg(24)->Arg(55)->Arg(119)->Unit(benchmark::kMillisecond);
+
+// The same meshes with points and tets numbered at random: no memory locality at all, the
+// worst case for a file written without care.
+void BM_FaceAdjacencyShuffled(benchmark::State& state) {
+    set_thread_count(1);
+    static std::map<int, std::unique_ptr<TetMesh>> cache;
+    const int n = static_cast<int>(state.range(0));
+    auto& slot = cache[n];
+    if (!slot) {
+        const TetMesh& ordered = tet_grid(n);
+        std::mt19937 rng(1);
+        std::vector<PointId> relabel(ordered.num_points());
+        std::iota(relabel.begin(), relabel.end(), PointId{0});
+        std::shuffle(relabel.begin(), relabel.end(), rng);
+        std::vector<Vec3> points(ordered.num_points());
+        for (std::size_t p = 0; p < points.size(); ++p) points[relabel[p]] = ordered.point(p);
+        std::vector<Tet> tets = ordered.tets();
+        for (Tet& t : tets) {
+            for (PointId& p : t) p = relabel[p];
+        }
+        std::shuffle(tets.begin(), tets.end(), rng);
+        slot = std::make_unique<TetMesh>(TetMesh::create(points, tets).value());
+    }
+    for (auto _ : state) benchmark::DoNotOptimize(build_face_adjacency(*slot));
+    state.counters["tets"] = static_cast<double>(slot->num_tets());
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * slot->num_tets()));
+}
+BENCHMARK(BM_FaceAdjacencyShuffled)->Arg(24)->Arg(55)->Arg(119)->Unit(benchmark::kMillisecond);
 
 void BM_TetrahedralizeHexGrid(benchmark::State& state) {
     set_thread_count(1);
