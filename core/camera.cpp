@@ -1,0 +1,38 @@
+#include <core/camera.h>
+
+#include <cmath>
+
+namespace tr {
+
+CameraFrame::CameraFrame(const Camera& camera, int width, int height)
+    : camera_(camera), width_(width), height_(height) {
+    forward_ = glm::normalize(camera.focal_point - camera.position);
+    right_ = glm::normalize(glm::cross(forward_, camera.view_up));
+    up_ = glm::cross(right_, forward_);
+    half_height_ =
+        camera.parallel ? camera.parallel_scale : std::tan(glm::radians(camera.view_angle) * 0.5);
+    aspect_ = static_cast<double>(width) / static_cast<double>(height);
+}
+
+Ray CameraFrame::ray(double x, double y) const {
+    const double nx = (2.0 * x / width_ - 1.0) * half_height_ * aspect_;
+    const double ny = (1.0 - 2.0 * y / height_) * half_height_;
+    if (camera_.parallel) return {camera_.position + nx * right_ + ny * up_, forward_};
+    return {camera_.position, glm::normalize(forward_ + nx * right_ + ny * up_)};
+}
+
+Vec3 CameraFrame::project(const Vec3& world) const {
+    const Vec3 d = world - camera_.position;
+    const double depth = glm::dot(d, forward_);
+    double sx = glm::dot(d, right_);
+    double sy = glm::dot(d, up_);
+    if (!camera_.parallel) {
+        sx /= depth;
+        sy /= depth;
+    }
+    const double x = (sx / (half_height_ * aspect_) + 1.0) * 0.5 * width_;
+    const double y = (1.0 - sy / half_height_) * 0.5 * height_;
+    return {x, y, depth};
+}
+
+}  // namespace tr

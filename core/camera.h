@@ -1,0 +1,57 @@
+#pragma once
+// The camera of a scene file (../shared/spec/scene.md, VTK's conventions): rays through pixel
+// centres and the projection of points to the image.
+//
+// Image coordinates: pixel (i, j) is column i, row j, row 0 at the top; it covers
+// [i, i + 1) x [j, j + 1) and its ray passes through (i + 0.5, j + 0.5).
+
+#include <core/math.h>
+
+namespace tr {
+
+struct Camera {
+    Vec3 position{0, 0, 1};
+    Vec3 focal_point{0, 0, 0};
+    Vec3 view_up{0, 1, 0};
+    double view_angle = 30.0;     // vertical field of view in degrees (perspective)
+    bool parallel = false;        // true: orthographic
+    double parallel_scale = 1.0;  // orthographic: half the view's height in world units
+};
+
+struct Ray {
+    Vec3 origin;
+    Vec3 direction;  // unit length
+};
+
+// The camera's frame and the image size, ready for rays and projections.
+class CameraFrame {
+  public:
+    // Preconditions: width, height >= 1; position != focal_point; view_up not parallel to
+    // the view direction (validated where scenes are read).
+    CameraFrame(const Camera& camera, int width, int height);
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    bool orthographic() const { return camera_.parallel; }
+    const Vec3& eye() const { return camera_.position; }
+    const Vec3& forward() const { return forward_; }  // unit, towards the focal point
+    const Vec3& right() const { return right_; }
+    const Vec3& up() const { return up_; }
+
+    // The ray through image point (x, y) in pixel units (pixel centres at half-integers).
+    Ray ray(double x, double y) const;
+    Ray pixel_ray(int i, int j) const { return ray(i + 0.5, j + 0.5); }
+
+    // Image position (x, y in pixel units) and depth (distance along `forward`) of a world
+    // point. For a perspective camera, depth <= 0 means behind the eye: x, y are meaningless.
+    Vec3 project(const Vec3& world) const;
+
+  private:
+    Camera camera_;
+    int width_, height_;
+    Vec3 forward_, right_, up_;
+    double half_height_;  // perspective: tan(angle / 2); orthographic: parallel_scale
+    double aspect_;
+};
+
+}  // namespace tr
