@@ -2,6 +2,7 @@
 // split, and bytes per tet for points + tets + one float scalar + adjacency (target <= 120).
 // Inputs: an n^3 grid of hexahedra split into 6 n^3 tets (about 1 point per 6 tets, typical
 // of tet meshes). n = 55 gives 1.0M tets, n = 119 gives 10.1M.
+#include <bench/bench_meshes.h>
 #include <core/parallel.h>
 #include <mesh/face_adjacency.h>
 #include <mesh/tetrahedralize.h>
@@ -17,49 +18,8 @@
 namespace tr {
 namespace {
 
-UnstructuredMesh hex_grid(int n) {
-    UnstructuredMesh m;
-    const int p = n + 1;
-    m.points.reserve(static_cast<std::size_t>(p) * p * p);
-    for (int k = 0; k < p; ++k)
-        for (int j = 0; j < p; ++j)
-            for (int i = 0; i < p; ++i) m.points.emplace_back(i, j, k + 0.001 * ((i * j) % 7));
-    auto id = [p](int i, int j, int k) { return static_cast<std::int64_t>((k * p + j) * p + i); };
-    m.offsets.reserve(static_cast<std::size_t>(n) * n * n + 1);
-    m.offsets.push_back(0);
-    for (int k = 0; k < n; ++k) {
-        for (int j = 0; j < n; ++j) {
-            for (int i = 0; i < n; ++i) {
-                const std::int64_t v[8] = {id(i, j, k),
-                                           id(i + 1, j, k),
-                                           id(i + 1, j + 1, k),
-                                           id(i, j + 1, k),
-                                           id(i, j, k + 1),
-                                           id(i + 1, j, k + 1),
-                                           id(i + 1, j + 1, k + 1),
-                                           id(i, j + 1, k + 1)};
-                m.connectivity.insert(m.connectivity.end(), v, v + 8);
-                m.offsets.push_back(static_cast<std::int64_t>(m.connectivity.size()));
-                m.types.push_back(CellType::kHexahedron);
-            }
-        }
-    }
-    return m;
-}
-
-// Built once per size and kept: generating 10M tets takes seconds.
-const TetMesh& tet_grid(int n) {
-    static std::map<int, std::unique_ptr<TetMesh>> cache;
-    auto& slot = cache[n];
-    if (!slot) {
-        auto mesh = tetrahedralize(hex_grid(n));
-        slot = std::make_unique<TetMesh>(std::move(mesh).value());
-        std::vector<float> scalar(slot->num_points());
-        for (std::size_t i = 0; i < scalar.size(); ++i) scalar[i] = static_cast<float>(i % 97);
-        (void)slot->add_point_field(make_float_field("scalar", 1, std::move(scalar)));
-    }
-    return *slot;
-}
+using bench::hex_grid;
+using bench::tet_grid;
 
 void BM_FaceAdjacency(benchmark::State& state) {
     set_thread_count(1);

@@ -1,0 +1,259 @@
+#include <project/scene.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace tr {
+namespace {
+
+using json = nlohmann::json;
+
+// Thrown inside the parser only; parse_scene is the one catch site.
+struct SceneError {
+    std::string path;
+    std::string message;
+};
+
+[[noreturn]] void fail(const std::string& path, const std::string& message) {
+    throw SceneError{path, message};
+}
+
+void check_keys(const json& j, const std::string& path, const std::set<std::string>& allowed) {
+    if (!j.is_object()) fail(path, "expected an object");
+    for (const auto& [key, value] : j.items()) {
+        if (!allowed.count(key)) {
+            std::string list;
+            for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+            fail(path + "." + key, "unknown key (allowed here: " + list + ")");
+        }
+    }
+}
+
+const json& require(const json& j, const std::string& path, const char* key) {
+    if (!j.contains(key)) fail(path + "." + key, "missing");
+    return j.at(key);
+}
+
+double number(const json& j, const std::string& path) {
+    if (!j.is_number()) fail(path, "expected a number");
+    const double x = j.get<double>();
+    if (!std::isfinite(x)) fail(path, "expected a finite number");
+    return x;
+}
+
+int integer(const json& j, const std::string& path) {
+    if (!j.is_number_integer()) fail(path, "expected an integer");
+    const auto x = j.get<std::int64_t>();
+    if (x < std::numeric_limits<int>::min() || x > std::numeric_limits<int>::max()) {
+        fail(path, "integer out of range");
+    }
+    return static_cast<int>(x);
+}
+
+std::vector<double> numbers(const json& j, const std::string& path, std::size_t n) {
+    if (!j.is_array() || j.size() != n) {
+        fail(path, "expected an array of " + std::to_string(n) + " numbers");
+    }
+    std::vector<double> out;
+    for (std::size_t i = 0; i < n; ++i)
+        out.push_back(number(j[i], path + "[" + std::to_string(i) + "]"));
+    return out;
+}
+
+Vec3 vec3(const json& j, const std::string& path) {
+    const auto v = numbers(j, path, 3);
+    return {v[0], v[1], v[2]};
+}
+
+TransferFunction transfer_function(const json& j, const std::string& path) {
+    check_keys(j, path, {"color", "opacity", "unit_distance"});
+    const json& color = require(j, path, "color");
+    const json& opacity = require(j, path, "opacity");
+    if (!color.is_array() || color.empty())
+        fail(path + ".color", "expected a non-empty array of [s, r, g, b]");
+    if (!opacity.is_array() || opacity.empty())
+        fail(path + ".opacity", "expected a non-empty array of [s, a]");
+    std::vector<ColorPoint> c;
+    for (std::size_t i = 0; i < color.size(); ++i) {
+        const auto v = numbers(color[i], path + ".color[" + std::to_string(i) + "]", 4);
+        c.push_back({v[0], {v[1], v[2], v[3]}});
+    }
+    std::vector<OpacityPoint> o;
+    for (std::size_t i = 0; i < opacity.size(); ++i) {
+        const auto v = numbers(opacity[i], path + ".opacity[" + std::to_string(i) + "]", 2);
+        o.push_back({v[0], v[1]});
+    }
+    const double unit = number(require(j, path, "unit_distance"), path + ".unit_distance");
+    auto tf = TransferFunction::create(std::move(c), std::move(o), unit);
+    if (!tf.ok()) fail(path, tf.error().message);
+    return std::move(tf).value();
+}
+
+Camera camera(const json& j, const std::string& path) {
+    check_keys(j, path,
+               {"position", "focal_point", "view_up", "view_angle", "parallel", "parallel_scale"});
+    Camera c;
+    c.position = vec3(require(j, path, "position"), path + ".position");
+    c.focal_point = vec3(require(j, path, "focal_point"), path + ".focal_point");
+    c.view_up = vec3(require(j, path, "view_up"), path + ".view_up");
+    if (j.contains("view_angle")) c.view_angle = number(j["view_angle"], path + ".view_angle");
+    if (j.contains("parallel")) {
+        if (!j["parallel"].is_boolean()) fail(path + ".parallel", "expected true or false");
+        c.parallel = j["parallel"].get<bool>();
+    }
+    if (j.contains("parallel_scale")) {
+        c.parallel_scale = number(j["parallel_scale"], path + ".parallel_scale");
+    }
+    const Vec3 forward = c.focal_point - c.position;
+    if (glm::length(forward) == 0) fail(path, "position equals focal_point: no view direction");
+    if (glm::length(glm::cross(glm::normalize(forward), c.view_up)) < 1e-9) {
+        fail(path + ".view_up", "zero or parallel to the view direction");
+    }
+    if (!(c.view_angle > 0 && c.view_angle < 180)) {
+        fail(path + ".view_angle", "must be in (0, 180) degrees");
+    }
+    if (!(c.parallel_scale > 0)) fail(path + ".parallel_scale", "must be positive");
+    return c;
+}
+
+}  // namespace
+
+Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& base_dir,
+                          const std::string& name) {
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::parse_error& e) {
+        std::string what = e.what();
+        // "[json.exception.parse_error.101] parse error at line 3, column 5: ..." -> keep the
+        // part after the id.
+        const auto pos = what.find("] ");
+        if (pos != std::string::npos) what = what.substr(pos + 2);
+        return make_error(ErrorCode::kParse, what, name);
+    }
+    try {
+        Scene scene;
+        check_keys(
+            j, "$",
+            {"mesh", "scalar", "component", "transfer_function", "camera", "image", "time_step"});
+        const json& mesh = require(j, "$", "mesh");
+        if (!mesh.is_string() || mesh.get<std::string>().empty())
+            fail("$.mesh", "expected a file path");
+        scene.mesh = base_dir / mesh.get<std::string>();
+        const json& scalar = require(j, "$", "scalar");
+        if (!scalar.is_string() || scalar.get<std::string>().empty())
+            fail("$.scalar", "expected an array name");
+        scene.scalar = scalar.get<std::string>();
+        if (j.contains("component")) {
+            const json& c = j["component"];
+            if (c.is_string()) {
+                if (c.get<std::string>() != "magnitude") {
+                    fail("$.component", "expected \"magnitude\" or a component index");
+                }
+            } else {
+                scene.component = integer(c, "$.component");
+                if (scene.component < 0) fail("$.component", "must be >= 0");
+            }
+        }
+        scene.transfer_function =
+            transfer_function(require(j, "$", "transfer_function"), "$.transfer_function");
+        scene.camera = camera(require(j, "$", "camera"), "$.camera");
+        const json& image = require(j, "$", "image");
+        check_keys(image, "$.image", {"width", "height", "background"});
+        scene.width = integer(require(image, "$.image", "width"), "$.image.width");
+        scene.height = integer(require(image, "$.image", "height"), "$.image.height");
+        for (const auto& [value, key] :
+             {std::pair{scene.width, "width"}, {scene.height, "height"}}) {
+            if (value < 1 || value > kMaxImageSide) {
+                fail(std::string("$.image.") + key,
+                     "must be between 1 and " + std::to_string(kMaxImageSide));
+            }
+        }
+        if (image.contains("background")) {
+            scene.background = vec3(image["background"], "$.image.background");
+            for (int c = 0; c < 3; ++c) {
+                if (scene.background[c] < 0 || scene.background[c] > 1) {
+                    fail("$.image.background", "components must be in [0, 1]");
+                }
+            }
+        }
+        if (j.contains("time_step")) {
+            scene.time_step = integer(j["time_step"], "$.time_step");
+            if (scene.time_step < 0) fail("$.time_step", "must be >= 0");
+        }
+        return scene;
+    } catch (const SceneError& e) {
+        return make_error(ErrorCode::kParse, e.path + ": " + e.message, name);
+    } catch (const json::exception& e) {
+        return make_error(ErrorCode::kParse, e.what(), name);
+    }
+}
+
+Result<Scene> read_scene(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        return make_error(ErrorCode::kNotFound, "no such scene file", path.string());
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    if (!in.good() && !in.eof()) {
+        return make_error(ErrorCode::kIo, "cannot read the file", path.string());
+    }
+    return parse_scene(text.str(), path.parent_path(), path.string());
+}
+
+Status write_scene(const Scene& scene, const std::filesystem::path& path) {
+    json j;
+    std::error_code ec;
+    auto mesh = std::filesystem::relative(
+        scene.mesh, path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path(),
+        ec);
+    j["mesh"] = (ec || mesh.empty() ? scene.mesh : mesh).generic_string();
+    j["scalar"] = scene.scalar;
+    if (scene.component >= 0) {
+        j["component"] = scene.component;
+    } else {
+        j["component"] = "magnitude";
+    }
+    json color = json::array(), opacity = json::array();
+    for (const auto& p : scene.transfer_function.color_points()) {
+        color.push_back({p.s, p.rgb.r, p.rgb.g, p.rgb.b});
+    }
+    for (const auto& p : scene.transfer_function.opacity_points()) opacity.push_back({p.s, p.a});
+    j["transfer_function"] = {{"color", color},
+                              {"opacity", opacity},
+                              {"unit_distance", scene.transfer_function.unit_distance()}};
+    const Camera& c = scene.camera;
+    j["camera"] = {{"position", {c.position.x, c.position.y, c.position.z}},
+                   {"focal_point", {c.focal_point.x, c.focal_point.y, c.focal_point.z}},
+                   {"view_up", {c.view_up.x, c.view_up.y, c.view_up.z}},
+                   {"view_angle", c.view_angle},
+                   {"parallel", c.parallel},
+                   {"parallel_scale", c.parallel_scale}};
+    j["image"] = {{"width", scene.width},
+                  {"height", scene.height},
+                  {"background", {scene.background.x, scene.background.y, scene.background.z}}};
+    if (scene.time_step) j["time_step"] = scene.time_step;
+    const auto tmp = path.string() + ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out << j.dump(2) << "\n";
+        if (!out) {
+            std::filesystem::remove(tmp, ec);
+            return make_error(ErrorCode::kIo, "cannot write the scene file", path.string());
+        }
+    }
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ec);
+        return make_error(ErrorCode::kIo, "cannot write the scene file", path.string());
+    }
+    return {};
+}
+
+}  // namespace tr

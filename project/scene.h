@@ -1,0 +1,44 @@
+#pragma once
+// Scene files (../shared/spec/scene.md, implemented exactly): one JSON object saying everything
+// needed to render one image of one mesh. Unknown keys, wrong types and missing required keys
+// are errors naming the JSON path ("scene.json: error: $.camera.position: expected ...").
+
+#include <core/camera.h>
+#include <core/result.h>
+#include <project/transfer_function.h>
+
+#include <filesystem>
+#include <string>
+
+namespace tr {
+
+struct Scene {
+    std::filesystem::path mesh;  // resolved against the scene file's folder
+    std::string scalar;
+    int component = -1;  // -1: magnitude (or the only component); >= 0: that component
+    TransferFunction transfer_function;
+    Camera camera;
+    int width = 512;
+    int height = 512;
+    Vec3 background{0.0};
+    int time_step = 0;
+};
+
+// Limits on what a scene may ask for.
+inline constexpr int kMaxImageSide = 16384;
+
+// Reads and validates a scene file. Errors: missing or unreadable file, malformed JSON (with
+// line and column), unknown keys, wrong types, out-of-range values (an image side outside
+// [1, kMaxImageSide], a camera whose position equals its focal point or whose view_up is
+// parallel to the view direction, a view angle outside (0, 180)).
+Result<Scene> read_scene(const std::filesystem::path& path);
+
+// Parses scene JSON text; `base_dir` resolves the mesh path; `name` is used in errors.
+Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& base_dir,
+                          const std::string& name);
+
+// Writes `scene` as a scene file (mesh path written relative to the file's folder when
+// possible). Written to a temporary file and renamed.
+Status write_scene(const Scene& scene, const std::filesystem::path& path);
+
+}  // namespace tr
