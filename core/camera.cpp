@@ -1,6 +1,7 @@
 #include <core/camera.h>
 
 #include <cmath>
+#include <random>
 
 namespace tr {
 
@@ -33,6 +34,39 @@ Vec3 CameraFrame::project(const Vec3& world) const {
     const double x = (sx / (half_height_ * aspect_) + 1.0) * 0.5 * width_;
     const double y = (1.0 - sy / half_height_) * 0.5 * height_;
     return {x, y, depth};
+}
+
+Camera random_view(const Bounds3& b, std::uint64_t seed, bool orthographic, bool inside) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> g(0.0, 1.0);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    auto random_unit = [&] {
+        Vec3 d;
+        do d = Vec3(g(rng), g(rng), g(rng));
+        while (glm::length(d) < 1e-3);
+        return glm::normalize(d);
+    };
+    const Vec3 centre = 0.5 * (b.lo + b.hi);
+    const double radius = 0.5 * b.diagonal();
+    const Vec3 dir = random_unit();
+    Camera c;
+    if (inside) {
+        c.position =
+            b.lo + Vec3(0.2 + 0.6 * u(rng), 0.2 + 0.6 * u(rng), 0.2 + 0.6 * u(rng)) * (b.hi - b.lo);
+        c.focal_point = c.position + dir;
+        c.view_angle = 90;
+    } else {
+        c.position = centre + dir * radius * (1.6 + u(rng));
+        c.focal_point = centre;
+        c.view_angle = 45;
+    }
+    Vec3 up;
+    do up = glm::cross(dir, random_unit());
+    while (glm::length(up) < 1e-3);
+    c.view_up = glm::normalize(up);
+    c.parallel = orthographic;
+    c.parallel_scale = radius * 1.1;
+    return c;
 }
 
 }  // namespace tr

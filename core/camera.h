@@ -7,6 +7,8 @@
 
 #include <core/math.h>
 
+#include <cstdint>
+
 namespace tr {
 
 struct Camera {
@@ -53,5 +55,11 @@ class CameraFrame {
     double half_height_;  // perspective: tan(angle / 2); orthographic: parallel_scale
     double aspect_;
 };
+
+// A random camera for tests and checks: looking at the centre of `bounds` from a random
+// direction outside them (perspective, 45 degrees, or orthographic framing the bounds), or,
+// with `inside`, from a random point in the middle 60% of the bounds looking in a random
+// direction (90 degrees). The same seed gives the same camera.
+Camera random_view(const Bounds3& bounds, std::uint64_t seed, bool orthographic, bool inside);
 
 }  // namespace tr
