@@ -1,0 +1,50 @@
+#pragma once
+// The CPU projected-tetrahedra renderer: cells composited back to front in a given order with
+// the premultiplied over operator (equation 1b of the texture-mapping paper), each cell's
+// fragment per pixel the exact segment of that pixel's ray through the tet (right under
+// perspective), clipped at the eye and at opaque depth, shaded by a SegmentShader.
+//
+// Pixel rays pass through pixel centres. A centre on a face shared by two tets belongs to
+// exactly one of them (the one whose outward normal is "positive"), so shared edges are
+// neither skipped nor blended twice. Threads work on fixed screen tiles, each compositing its
+// cells in the given order: the image is bit-identical whatever the thread count.
+
+#include <core/camera.h>
+#include <core/image.h>
+#include <mesh/tet_mesh.h>
+#include <project/segment_shader.h>
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace tr {
+
+struct RenderStats {
+    std::size_t cells_drawn = 0;  // cells whose projection reached the image
+    std::size_t fragments = 0;    // (cell, pixel) pairs with a segment of positive length
+    double raster_ms = 0;
+};
+
+struct RenderInputs {
+    const TetMesh* mesh = nullptr;
+    std::span<const float> scalar;  // one per mesh point
+    std::span<const CellId> order;  // back to front, real cells
+    const SegmentShader* shader = nullptr;
+    const CameraFrame* camera = nullptr;
+    // The picture behind the volume: background colour, or opaque geometry already drawn
+    // (colour per pixel, and per pixel the ray parameter where the opaque surface is, +inf
+    // where there is none). Either may be empty: then `background` and no opaque depth.
+    Vec3 background{0.0};
+    const Image* opaque_color = nullptr;
+    const std::vector<double>* opaque_depth = nullptr;
+};
+
+// Renders the volume over the background (or opaque geometry). Preconditions: sizes agree.
+Image render_projected_tetrahedra(const RenderInputs& inputs, RenderStats* stats = nullptr);
+
+// The longest segment a ray can have through any real tet (its longest edge): what a
+// SegmentShader's tables must cover.
+double longest_edge(const TetMesh& mesh);
+
+}  // namespace tr
