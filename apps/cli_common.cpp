@@ -36,6 +36,11 @@ double ms_since(std::chrono::steady_clock::time_point start) {
         .count();
 }
 
+Error with_where(Error error, const std::string& path) {
+    error.where = error.where.empty() ? path : path + ": " + error.where;
+    return error;
+}
+
 int report_error(const Error& error) {
     std::fprintf(stderr, "tetrender: %s\n", error.to_string().c_str());
     return kExitError;

@@ -45,6 +45,9 @@ Result<LoadedMesh> load_tet_mesh(const std::string& path, const LoadOptions& opt
 // Milliseconds since `start`.
 double ms_since(std::chrono::steady_clock::time_point start);
 
+// `error` with `path` in front of its where ("path: where" or "path").
+Error with_where(Error error, const std::string& path);
+
 // Prints "tetrender: <error>" on stderr, returns kExitError.
 int report_error(const Error& error);
 

@@ -30,11 +30,6 @@ struct TetrahedralizeArgs {
     LoadOptions load;
 };
 
-Error with_path(Error e, const std::string& path) {
-    e.where = e.where.empty() ? path : path + ": " + e.where;
-    return e;
-}
-
 int run_tetrahedralize(const TetrahedralizeArgs& args) {
     if (static_cast<int>(args.delaunay) + static_cast<int>(args.tetgen) +
             static_cast<int>(args.convexify) >
@@ -54,7 +49,7 @@ int run_tetrahedralize(const TetrahedralizeArgs& args) {
         options.max_volume = args.max_volume;
         options.extra_switches = args.tetgen_switches;
         auto meshed = tetgen_mesh_surface(*surface, options);
-        if (!meshed.ok()) return report_error(with_path(meshed.error(), args.input));
+        if (!meshed.ok()) return report_error(with_where(meshed.error(), args.input));
         mesh = std::move(meshed).value();
 #else
         return report_error(make_error(ErrorCode::kUnsupported,
@@ -71,9 +66,9 @@ int run_tetrahedralize(const TetrahedralizeArgs& args) {
     if (args.convexify) {
 #if TETRENDER_HAS_TETGEN
         auto adjacency = build_face_adjacency(mesh);
-        if (!adjacency.ok()) return report_error(with_path(adjacency.error(), args.input));
+        if (!adjacency.ok()) return report_error(with_where(adjacency.error(), args.input));
         auto report = convexify(mesh, *adjacency);
-        if (!report.ok()) return report_error(with_path(report.error(), args.input));
+        if (!report.ok()) return report_error(with_where(report.error(), args.input));
         num_virtual = report->num_virtual_tets;
         write_options.include_virtual = true;
 #else

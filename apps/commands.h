@@ -14,5 +14,6 @@ std::function<int()> add_tetrahedralize_command(CLI::App& app);
 std::function<int()> add_demo_command(CLI::App& app);
 std::function<int()> add_sort_check_command(CLI::App& app);
 std::function<int()> add_sort_command(CLI::App& app);
+std::function<int()> add_render_command(CLI::App& app);
 
 }  // namespace tr::apps

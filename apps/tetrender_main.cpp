@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     auto demo = add_demo_command(app);
     auto sort_check = add_sort_check_command(app);
     auto sort = add_sort_command(app);
+    auto render = add_render_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("demo")) return demo();
         if (app.got_subcommand("sort-check")) return sort_check();
         if (app.got_subcommand("sort")) return sort();
+        if (app.got_subcommand("render")) return render();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tetrender: internal error: %s\n", e.what());
         return kExitError;

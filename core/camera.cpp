@@ -36,6 +36,19 @@ Vec3 CameraFrame::project(const Vec3& world) const {
     return {x, y, depth};
 }
 
+Camera framing_camera(const Bounds3& b, const Vec3& from, double view_angle) {
+    const Vec3 centre = 0.5 * (b.lo + b.hi);
+    const double radius = std::max(0.5 * b.diagonal(), 1e-12);
+    const Vec3 dir = glm::normalize(from);
+    Camera c;
+    c.view_angle = view_angle;
+    c.position = centre + dir * (radius / std::sin(glm::radians(view_angle) * 0.5));
+    c.focal_point = centre;
+    c.view_up = std::abs(dir.z) > 0.95 ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+    c.parallel_scale = radius;
+    return c;
+}
+
 Camera random_view(const Bounds3& b, std::uint64_t seed, bool orthographic, bool inside) {
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> g(0.0, 1.0);

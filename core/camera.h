@@ -56,6 +56,11 @@ class CameraFrame {
     double aspect_;
 };
 
+// A perspective camera (view_angle degrees) looking at the centre of `bounds` from direction
+// `from` (the eye lies at centre + k * from), far enough that the bounding sphere fills the
+// view; view_up is +z unless `from` is nearly along z (then +y).
+Camera framing_camera(const Bounds3& bounds, const Vec3& from, double view_angle = 30.0);
+
 // A random camera for tests and checks: looking at the centre of `bounds` from a random
 // direction outside them (perspective, 45 degrees, or orthographic framing the bounds), or,
 // with `inside`, from a random point in the middle 60% of the bounds looking in a random

@@ -1,0 +1,229 @@
+// tetrender render: a scene file, or a mesh with --scalar for a quick look, to PNG or PFM.
+#include <apps/cli_common.h>
+#include <apps/commands.h>
+#include <apps/sort_setup.h>
+#include <core/parallel.h>
+#include <io/write_image.h>
+#include <mesh/point_data.h>
+#include <project/colormap.h>
+#include <project/cpu_renderer.h>
+#include <project/scene.h>
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <regex>
+
+namespace tr::apps {
+namespace {
+
+struct RenderArgs {
+    std::string input;
+    std::string output;
+    std::string sort = "auto";
+    std::string integrator = "preintegrated";
+    int threads = 0;
+    bool stats = false;
+    // Quick mode (input is a mesh).
+    std::string scalar;
+    std::string component = "magnitude";
+    std::string size = "800x600";
+    std::string view = "iso";
+    std::string colormap = "viridis";
+    std::string write_scene_path;
+};
+
+bool is_scene_file(const std::string& path) {
+    return path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
+}
+
+Result<Vec3> view_direction(const std::string& view) {
+    static const std::map<std::string, Vec3> views = {
+        {"iso", {1.0, -1.2, 0.8}}, {"+x", {1, 0, 0}}, {"-x", {-1, 0, 0}}, {"+y", {0, 1, 0}},
+        {"-y", {0, -1, 0}},        {"+z", {0, 0, 1}}, {"-z", {0, 0, -1}}};
+    auto it = views.find(view);
+    if (it == views.end()) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "unknown --view '" + view + "' (iso, +x, -x, +y, -y, +z, -z)");
+    }
+    return it->second;
+}
+
+// The scene for a quick look at `mesh`: camera framing the bounds, colour map over the range.
+Result<Scene> quick_scene(const RenderArgs& args, const TetMesh& mesh) {
+    Scene scene;
+    scene.mesh = std::filesystem::absolute(args.input);
+    scene.scalar = args.scalar;
+    if (args.component != "magnitude") {
+        try {
+            scene.component = std::stoi(args.component);
+        } catch (...) {
+            return make_error(ErrorCode::kInvalidArgument,
+                              "--component must be 'magnitude' or an index");
+        }
+    }
+    std::smatch m;
+    static const std::regex size_re("([0-9]{1,5})x([0-9]{1,5})");
+    if (!std::regex_match(args.size, m, size_re)) {
+        return make_error(ErrorCode::kInvalidArgument, "--size must be WxH, not " + args.size);
+    }
+    scene.width = std::stoi(m[1]);
+    scene.height = std::stoi(m[2]);
+    if (scene.width < 1 || scene.height < 1 || scene.width > kMaxImageSide ||
+        scene.height > kMaxImageSide) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "--size sides must be in [1, " + std::to_string(kMaxImageSide) + "]");
+    }
+    TR_TRY(const Vec3 from, view_direction(args.view));
+    const Bounds3 bounds = mesh.bounds();
+    scene.camera = framing_camera(bounds, from);
+    scene.camera.view_angle = 30.0;
+    TR_TRY(const std::vector<float> values, point_scalar(mesh, scene.scalar, scene.component));
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (float v : values) {
+        if (!std::isfinite(v)) continue;
+        lo = std::min<double>(lo, v);
+        hi = std::max<double>(hi, v);
+    }
+    TR_TRY(scene.transfer_function,
+           make_quick_transfer_function(args.colormap, lo, hi, 0.3, bounds.diagonal() / 20.0));
+    return scene;
+}
+
+int run_render(const RenderArgs& args) {
+    const auto method = parse_sort_method(args.sort);
+    if (!method) {
+        std::fprintf(stderr,
+                     "tetrender: unknown --sort '%s' (auto, mpvo, mpvonc, exact, "
+                     "centroid)\n",
+                     args.sort.c_str());
+        return kExitUsage;
+    }
+    const auto integrator = parse_integrator(args.integrator);
+    if (!integrator) {
+        std::fprintf(stderr,
+                     "tetrender: unknown --integrator '%s' (exact, preintegrated, "
+                     "exp-texture)\n",
+                     args.integrator.c_str());
+        return kExitUsage;
+    }
+    const bool scene_mode = is_scene_file(args.input);
+    if (!scene_mode && args.scalar.empty()) {
+        std::fprintf(stderr,
+                     "tetrender: rendering a mesh file needs --scalar NAME (or give a "
+                     "scene .json)\n");
+        return kExitUsage;
+    }
+    if (args.threads > 0) set_thread_count(args.threads);
+
+    Scene scene;
+    if (scene_mode) {
+        auto read = read_scene(args.input);
+        if (!read.ok()) return report_error(read.error());
+        scene = std::move(read).value();
+    }
+    LoadOptions load;
+    load.time_step = scene.time_step;
+    auto loaded = load_tet_mesh(scene_mode ? scene.mesh.string() : args.input, load);
+    if (!loaded.ok()) return report_error(loaded.error());
+    if (!scene_mode) {
+        auto quick = quick_scene(args, loaded->tets);
+        if (!quick.ok()) return report_error(with_where(quick.error(), args.input));
+        scene = std::move(quick).value();
+        if (!args.write_scene_path.empty()) {
+            const Status written = write_scene(scene, args.write_scene_path);
+            if (!written.ok()) return report_error(written.error());
+        }
+    }
+    const std::string mesh_name = scene.mesh.string();
+    auto scalar = point_scalar(loaded->tets, scene.scalar, scene.component);
+    if (!scalar.ok()) return report_error(with_where(scalar.error(), mesh_name));
+    for (std::size_t p = 0; p < scalar->size(); ++p) {
+        if (!std::isfinite((*scalar)[p])) {
+            return report_error(make_error(
+                ErrorCode::kInvalidMesh,
+                "array '" + scene.scalar + "' is not finite at point " + std::to_string(p),
+                mesh_name));
+        }
+    }
+    const std::size_t cells = loaded->tets.num_real_tets();
+    auto setup = prepare_sort(std::move(loaded->tets), *method);
+    if (!setup.ok()) return report_error(with_where(setup.error(), mesh_name));
+    if (!setup->note.empty()) std::fprintf(stderr, "tetrender: note: %s\n", setup->note.c_str());
+    // Virtual points (convexification) get scalar 0: they are never drawn.
+    scalar->resize(setup->mesh.num_points(), 0.0f);
+
+    const CameraFrame frame(scene.camera, scene.width, scene.height);
+    VisibilitySorter sorter;
+    std::vector<CellId> order;
+    const SortStats sort_stats = sorter.sort(setup->mesh, setup->adjacency,
+                                             SortView::from_camera(frame), setup->method, order);
+    const auto shader_start = std::chrono::steady_clock::now();
+    const SegmentShader shader(scene.transfer_function, *integrator, longest_edge(setup->mesh));
+    const double shader_ms = ms_since(shader_start);
+    RenderInputs in;
+    in.mesh = &setup->mesh;
+    in.scalar = *scalar;
+    in.order = order;
+    in.shader = &shader;
+    in.camera = &frame;
+    in.background = scene.background;
+    RenderStats render_stats;
+    const Image image = render_projected_tetrahedra(in, &render_stats);
+    const Status written = write_image(image, args.output);
+    if (!written.ok()) return report_error(written.error());
+    if (args.stats) {
+        nlohmann::json j = {{"load_ms", loaded->read_ms},
+                            {"tetrahedralize_ms", loaded->tetrahedralize_ms},
+                            {"adjacency_ms", setup->adjacency_ms},
+                            {"convexify_ms", setup->convexify_ms},
+                            {"sort_ms", sort_stats.milliseconds},
+                            {"shader_ms", shader_ms},
+                            {"raster_ms", render_stats.raster_ms},
+                            {"cells", cells},
+                            {"cells_drawn", render_stats.cells_drawn},
+                            {"fragments", render_stats.fragments},
+                            {"sort", sort_method_name(*method)},
+                            {"sort_exact", setup->exact},
+                            {"integrator", integrator_name(*integrator)},
+                            {"threads", thread_count()},
+                            {"width", scene.width},
+                            {"height", scene.height}};
+        std::printf("%s\n", j.dump().c_str());
+    }
+    return kExitOk;
+}
+
+}  // namespace
+
+std::function<int()> add_render_command(CLI::App& app) {
+    auto args = std::make_shared<RenderArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "render", "Render a scene file, or a mesh with --scalar for a quick look, to PNG/PFM");
+    cmd->add_option("input", args->input, "Scene file (.json) or mesh file")->required();
+    cmd->add_option("-o,--output", args->output, "Output image (.png, or .pfm for floats)")
+        ->required();
+    cmd->add_option("--sort", args->sort, "auto (default), mpvo, mpvonc, exact, centroid");
+    cmd->add_option("--integrator", args->integrator,
+                    "preintegrated (default), exact, exp-texture");
+    cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 1024));
+    cmd->add_flag("--stats", args->stats,
+                  "Print one JSON line: time of each phase (ms), cells drawn, fragments");
+    cmd->add_option("--scalar", args->scalar, "Quick mode: the array to render");
+    cmd->add_option("--component", args->component,
+                    "Quick mode: 'magnitude' (default) or a component index");
+    cmd->add_option("--size", args->size, "Quick mode: image size WxH (default 800x600)");
+    cmd->add_option("--view", args->view, "Quick mode: iso (default), +x, -x, +y, -y, +z, -z");
+    cmd->add_option("--colormap", args->colormap,
+                    "Quick mode: viridis (default), coolwarm, inferno, gray");
+    cmd->add_option("--write-scene", args->write_scene_path,
+                    "Quick mode: save the scene used, to edit and re-render");
+    return [args] { return run_render(*args); };
+}
+
+}  // namespace tr::apps

@@ -1,0 +1,102 @@
+#include <io/write_image.h>
+
+#include <png.h>
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace tr {
+namespace {
+
+std::filesystem::path temp_path(const std::filesystem::path& path) {
+    return path.string() + ".tmp";
+}
+
+Status finish(const std::filesystem::path& tmp, const std::filesystem::path& path, bool ok) {
+    std::error_code ec;
+    if (ok) std::filesystem::rename(tmp, path, ec);
+    if (!ok || ec) {
+        std::filesystem::remove(tmp, ec);
+        return make_error(ErrorCode::kIo, "cannot write the image", path.string());
+    }
+    return {};
+}
+
+}  // namespace
+
+Status write_png(const Image& image, const std::filesystem::path& path) {
+    const auto tmp = temp_path(path);
+    FILE* file = std::fopen(tmp.c_str(), "wb");
+    if (!file) return make_error(ErrorCode::kIo, "cannot create the file", path.string());
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    bool ok = png && info;
+    const std::vector<std::uint8_t> rgb = to_rgb8(image);
+    if (ok && setjmp(png_jmpbuf(png))) {
+        ok = false;
+    } else if (ok) {
+        png_init_io(png, file);
+        png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
+                     static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_RGB,
+                     PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+        png_write_info(png, info);
+        for (int y = 0; y < image.height; ++y) {
+            png_write_row(png, const_cast<png_bytep>(rgb.data() + static_cast<std::size_t>(y) *
+                                                                      image.width * 3));
+        }
+        png_write_end(png, nullptr);
+    }
+    png_destroy_write_struct(png ? &png : nullptr, info ? &info : nullptr);
+    ok = (std::fclose(file) == 0) && ok;
+    return finish(tmp, path, ok);
+}
+
+Status write_pfm(const Image& image, const std::filesystem::path& path) {
+    const auto tmp = temp_path(path);
+    bool ok = false;
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
+        for (int y = image.height - 1; y >= 0; --y) {
+            out.write(reinterpret_cast<const char*>(&image.at(0, y)),
+                      static_cast<std::streamsize>(sizeof(Vec3f) * image.width));
+        }
+        ok = static_cast<bool>(out);
+    }
+    return finish(tmp, path, ok);
+}
+
+Result<Image> read_png(const std::filesystem::path& path) {
+    png_image img;
+    std::memset(&img, 0, sizeof(img));
+    img.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&img, path.c_str())) {
+        return make_error(ErrorCode::kParse, std::string("not a readable PNG: ") + img.message,
+                          path.string());
+    }
+    img.format = PNG_FORMAT_RGB;
+    std::vector<std::uint8_t> rgb(PNG_IMAGE_SIZE(img));
+    if (!png_image_finish_read(&img, nullptr, rgb.data(), 0, nullptr)) {
+        png_image_free(&img);
+        return make_error(ErrorCode::kParse, std::string("bad PNG: ") + img.message, path.string());
+    }
+    Image out(static_cast<int>(img.width), static_cast<int>(img.height));
+    for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+        out.pixels[i] = Vec3f(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]) / 255.0f;
+    }
+    return out;
+}
+
+Status write_image(const Image& image, const std::filesystem::path& path) {
+    const std::string ext = path.extension().string();
+    if (ext == ".png" || ext == ".PNG") return write_png(image, path);
+    if (ext == ".pfm" || ext == ".PFM") return write_pfm(image, path);
+    return make_error(ErrorCode::kUnsupported, "image files must end in .png or .pfm",
+                      path.string());
+}
+
+}  // namespace tr
