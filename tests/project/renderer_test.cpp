@@ -4,6 +4,7 @@
 #include <mesh/face_adjacency.h>
 #include <mesh/tetrahedralize.h>
 #include <project/cpu_renderer.h>
+#include <project/opaque_geometry.h>
 #include <project/reference_raycaster.h>
 #include <sort/visibility_sort.h>
 #include <tests/mesh/mixed_grid.h>
@@ -177,6 +178,56 @@ TEST(Renderer, BitIdenticalWhateverTheThreadCount) {
               0);
     EXPECT_EQ(
         std::memcmp(one.pixels.data(), seven.pixels.data(), one.pixels.size() * sizeof(Vec3f)), 0);
+}
+
+TEST(Renderer, OpaqueGeometryCutsEverySegmentAtItsDepth) {
+    const Fixture fx = make_fixture(3, [](const Vec3&) { return 1.0f; });
+    const TransferFunction tf =
+        TransferFunction::create({{1, {1.0, 0.7, 0.2}}}, {{1, 0.35}}, 1.0).value();
+    const double kappa = tf.extinction(1.0);
+    // A tilted plane through the cube: z = 1 + 0.3 x, seen from above.
+    SurfaceMesh plane;
+    plane.points = {{-1, -1, 0.7}, {4, -1, 2.2}, {4, 4, 2.2}, {-1, 4, 0.7}};
+    plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+    const Vec3 plane_color(0.2, 0.9, 0.3);
+    for (bool parallel : {true, false}) {
+        const CameraFrame frame(looking_at({1.5, 1.5, 12}, {1.5, 1.5, 1.5}, parallel, 2.2), 64, 64);
+        const OpaqueLayer layer = render_opaque({{&plane, plane_color}}, frame, Vec3(0.0));
+        EXPECT_GT(layer.pixels_covered, 1500u);
+        VisibilitySorter sorter;
+        std::vector<CellId> order;
+        sorter.sort(fx.mesh, fx.adjacency, SortView::from_camera(frame), SortMethod::kMpvo, order);
+        const SegmentShader shader(tf, Integrator::kExact, longest_edge(fx.mesh));
+        RenderInputs in;
+        in.mesh = &fx.mesh;
+        in.scalar = fx.scalar;
+        in.order = order;
+        in.shader = &shader;
+        in.camera = &frame;
+        in.opaque_color = &layer.color;
+        in.opaque_depth = &layer.depth;
+        const Image image = render_projected_tetrahedra(in);
+        const Vec3 normal = glm::normalize(Vec3(-0.3, 0, 1));
+        for (int j = 0; j < 64; ++j) {
+            for (int i = 0; i < 64; ++i) {
+                const Ray r = frame.pixel_ray(i, j);
+                // Where the ray meets the plane, and how much of the cube lies before it.
+                const double t_plane =
+                    glm::dot(normal, Vec3(0, 0, 1) - r.origin) / glm::dot(normal, r.direction);
+                const Vec3 hit = r.origin + t_plane * r.direction;
+                if (hit.x < 0.01 || hit.x > 2.99 || hit.y < 0.01 || hit.y > 2.99) continue;
+                const double t_top = (3.0 - r.origin.z) / r.direction.z;
+                const double chord = t_plane - t_top;
+                const double alpha = 1 - std::exp(-kappa * chord);
+                const double lambert = 0.2 + 0.8 * std::abs(glm::dot(normal, r.direction));
+                const Vec3 expected =
+                    Vec3(1.0, 0.7, 0.2) * alpha + (1 - alpha) * plane_color * lambert;
+                for (int k = 0; k < 3; ++k) {
+                    ASSERT_NEAR(image.at(i, j)[k], expected[k], 1.0 / 255) << i << "," << j;
+                }
+            }
+        }
+    }
 }
 
 }  // namespace
