@@ -3,10 +3,12 @@
 #include <apps/commands.h>
 #include <apps/sort_setup.h>
 #include <core/parallel.h>
+#include <io/read_surface.h>
 #include <io/write_image.h>
 #include <mesh/point_data.h>
 #include <project/colormap.h>
 #include <project/cpu_renderer.h>
+#include <project/opaque_geometry.h>
 #include <project/scene.h>
 
 #include <nlohmann/json.hpp>
@@ -94,6 +96,38 @@ Result<Scene> quick_scene(const RenderArgs& args, const TetMesh& mesh) {
     return scene;
 }
 
+// The scene's opaque surfaces: files read here, side sets taken from the mesh as read.
+Result<std::vector<SurfaceMesh>> opaque_surfaces(const Scene& scene, const UnstructuredMesh& input,
+                                                 std::vector<Vec3>& colors) {
+    std::vector<SurfaceMesh> surfaces;
+    for (const OpaqueSpec& spec : scene.opaque) {
+        if (!spec.file.empty()) {
+            TR_TRY(SurfaceMesh surface, read_surface(spec.file));
+            surfaces.push_back(std::move(surface));
+            colors.push_back(spec.color);
+            continue;
+        }
+        bool found = false;
+        for (const SurfaceMesh& s : input.surfaces) {
+            if (spec.side_set == "*" || s.name == spec.side_set) {
+                surfaces.push_back(s);
+                colors.push_back(spec.color);
+                found = true;
+            }
+        }
+        if (!found) {
+            std::string names;
+            for (const SurfaceMesh& s : input.surfaces)
+                names += (names.empty() ? "" : ", ") + s.name;
+            return make_error(ErrorCode::kNotFound,
+                              "no side set '" + spec.side_set + "' in the mesh (it has: " +
+                                  (names.empty() ? std::string("none") : names) + ")",
+                              scene.mesh.string());
+        }
+    }
+    return surfaces;
+}
+
 int run_render(const RenderArgs& args) {
     const auto method = parse_sort_method(args.sort);
     if (!method) {
@@ -165,7 +199,22 @@ int run_render(const RenderArgs& args) {
     const auto shader_start = std::chrono::steady_clock::now();
     const SegmentShader shader(scene.transfer_function, *integrator, longest_edge(setup->mesh));
     const double shader_ms = ms_since(shader_start);
+    std::vector<Vec3> opaque_colors;
+    auto surfaces = opaque_surfaces(scene, loaded->input, opaque_colors);
+    if (!surfaces.ok()) return report_error(surfaces.error());
+    std::vector<OpaqueSurface> opaque;
+    for (std::size_t i = 0; i < surfaces->size(); ++i) {
+        opaque.push_back({&(*surfaces)[i], opaque_colors[i]});
+    }
+    const auto opaque_start = std::chrono::steady_clock::now();
+    const OpaqueLayer layer =
+        opaque.empty() ? OpaqueLayer{} : render_opaque(opaque, frame, scene.background);
+    const double opaque_ms = ms_since(opaque_start);
     RenderInputs in;
+    if (!opaque.empty()) {
+        in.opaque_color = &layer.color;
+        in.opaque_depth = &layer.depth;
+    }
     in.mesh = &setup->mesh;
     in.scalar = *scalar;
     in.order = order;
@@ -183,6 +232,7 @@ int run_render(const RenderArgs& args) {
                             {"convexify_ms", setup->convexify_ms},
                             {"sort_ms", sort_stats.milliseconds},
                             {"shader_ms", shader_ms},
+                            {"opaque_ms", opaque_ms},
                             {"raster_ms", render_stats.raster_ms},
                             {"cells", cells},
                             {"cells_drawn", render_stats.cells_drawn},

@@ -137,9 +137,9 @@ Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& 
     }
     try {
         Scene scene;
-        check_keys(
-            j, "$",
-            {"mesh", "scalar", "component", "transfer_function", "camera", "image", "time_step"});
+        check_keys(j, "$",
+                   {"mesh", "scalar", "component", "transfer_function", "camera", "image",
+                    "time_step", "opaque"});
         const json& mesh = require(j, "$", "mesh");
         if (!mesh.is_string() || mesh.get<std::string>().empty())
             fail("$.mesh", "expected a file path");
@@ -184,6 +184,36 @@ Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& 
         if (j.contains("time_step")) {
             scene.time_step = integer(j["time_step"], "$.time_step");
             if (scene.time_step < 0) fail("$.time_step", "must be >= 0");
+        }
+        if (j.contains("opaque")) {
+            const json& list = j["opaque"];
+            if (!list.is_array()) fail("$.opaque", "expected an array of surfaces");
+            for (std::size_t i = 0; i < list.size(); ++i) {
+                const std::string path = "$.opaque[" + std::to_string(i) + "]";
+                check_keys(list[i], path, {"file", "side_set", "color"});
+                OpaqueSpec spec;
+                const bool has_file = list[i].contains("file");
+                const bool has_side_set = list[i].contains("side_set");
+                if (has_file == has_side_set) fail(path, "give exactly one of file and side_set");
+                if (has_file) {
+                    if (!list[i]["file"].is_string()) fail(path + ".file", "expected a file path");
+                    spec.file = base_dir / list[i]["file"].get<std::string>();
+                } else {
+                    if (!list[i]["side_set"].is_string()) {
+                        fail(path + ".side_set", "expected a side-set name or \"*\"");
+                    }
+                    spec.side_set = list[i]["side_set"].get<std::string>();
+                }
+                if (list[i].contains("color")) {
+                    spec.color = vec3(list[i]["color"], path + ".color");
+                    for (int c = 0; c < 3; ++c) {
+                        if (spec.color[c] < 0 || spec.color[c] > 1) {
+                            fail(path + ".color", "components must be in [0, 1]");
+                        }
+                    }
+                }
+                scene.opaque.push_back(spec);
+            }
         }
         return scene;
     } catch (const SceneError& e) {
@@ -239,6 +269,24 @@ Status write_scene(const Scene& scene, const std::filesystem::path& path) {
                   {"height", scene.height},
                   {"background", {scene.background.x, scene.background.y, scene.background.z}}};
     if (scene.time_step) j["time_step"] = scene.time_step;
+    if (!scene.opaque.empty()) {
+        json list = json::array();
+        for (const OpaqueSpec& o : scene.opaque) {
+            json item;
+            if (o.side_set.empty()) {
+                auto rel = std::filesystem::relative(
+                    o.file,
+                    path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path(),
+                    ec);
+                item["file"] = (ec || rel.empty() ? o.file : rel).generic_string();
+            } else {
+                item["side_set"] = o.side_set;
+            }
+            item["color"] = {o.color.x, o.color.y, o.color.z};
+            list.push_back(item);
+        }
+        j["opaque"] = list;
+    }
     const auto tmp = path.string() + ".tmp";
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

@@ -9,8 +9,18 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace tr {
+
+// Opaque geometry drawn before the volume (an extension of the spec, docs/scene-file.md):
+// a surface file (.stl .ply .obj .off .poly, relative to the scene file) or a side set of the
+// mesh (Exodus), with a colour.
+struct OpaqueSpec {
+    std::filesystem::path file;  // empty when side_set is used
+    std::string side_set;        // a side-set name, or "*" for all of them
+    Vec3 color{0.8, 0.8, 0.8};
+};
 
 struct Scene {
     std::filesystem::path mesh;  // resolved against the scene file's folder
@@ -22,6 +32,7 @@ struct Scene {
     int height = 512;
     Vec3 background{0.0};
     int time_step = 0;
+    std::vector<OpaqueSpec> opaque;
 };
 
 // Limits on what a scene may ask for.

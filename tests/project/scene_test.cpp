@@ -112,6 +112,23 @@ TEST(SceneBadInput, MalformedJsonSaysWhere) {
     EXPECT_FALSE(read_scene("/no/such/scene.json").ok());
 }
 
+TEST(Scene, OpaqueSurfacesExtension) {
+    std::string text = replace(kScene, ",\n  \"time_step\": 2",
+                               R"(, "opaque": [{"file": "body.stl", "color": [1, 0, 0]},
+                                               {"side_set": "*"}])");
+    auto scene = parse(text);
+    ASSERT_TRUE(scene.ok()) << scene.error().to_string();
+    ASSERT_EQ(scene->opaque.size(), 2u);
+    EXPECT_EQ(scene->opaque[0].file, std::filesystem::path("/base/body.stl"));
+    EXPECT_EQ(scene->opaque[0].color, Vec3(1, 0, 0));
+    EXPECT_EQ(scene->opaque[1].side_set, "*");
+    EXPECT_EQ(scene->opaque[1].color, Vec3(0.8));
+    auto both = parse(replace(kScene, ",\n  \"time_step\": 2",
+                              R"(, "opaque": [{"file": "a.stl", "side_set": "x"}])"));
+    ASSERT_FALSE(both.ok());
+    EXPECT_NE(both.error().message.find("$.opaque[0]"), std::string::npos);
+}
+
 TEST(Scene, WriteThenReadGivesTheSameScene) {
     auto scene = parse(kScene);
     ASSERT_TRUE(scene.ok());
