@@ -72,19 +72,23 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
     const auto start = std::chrono::steady_clock::now();
     const TetMesh& mesh = *in.mesh;
     const CameraFrame& camera = *in.camera;
+    const bool orthographic = camera.orthographic();
     const int w = camera.width(), h = camera.height();
     const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
 
-    // Bin the cells into tiles, keeping the order inside each tile.
-    std::vector<std::vector<CellId>> bins(static_cast<std::size_t>(tiles_x) * tiles_y);
+    // Screen boxes of the cells, then the cells binned into tiles keeping the order.
+    std::vector<ScreenBox> boxes(in.order.size());
+    parallel_for(0, in.order.size(), 4096,
+                 [&](std::size_t i) { boxes[i] = screen_box(mesh, in.order[i], camera); });
+    std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(tiles_x) * tiles_y);
     std::size_t drawn = 0;
-    for (CellId t : in.order) {
-        const ScreenBox b = screen_box(mesh, t, camera);
+    for (std::uint32_t i = 0; i < in.order.size(); ++i) {
+        const ScreenBox& b = boxes[i];
         if (b.x0 > b.x1 || b.y0 > b.y1) continue;
         ++drawn;
         for (int ty = b.y0 / kTile; ty <= b.y1 / kTile; ++ty) {
             for (int tx = b.x0 / kTile; tx <= b.x1 / kTile; ++tx)
-                bins[ty * tiles_x + tx].push_back(t);
+                bins[ty * tiles_x + tx].push_back(i);
         }
     }
 
@@ -95,18 +99,27 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
         const int tx = static_cast<int>(tile) % tiles_x, ty = static_cast<int>(tile) / tiles_x;
         const int px0 = tx * kTile, py0 = ty * kTile;
         const int px1 = std::min(px0 + kTile, w) - 1, py1 = std::min(py0 + kTile, h) - 1;
+        // The tile's rays, computed once.
+        Ray rays[kTile * kTile];
+        for (int y = py0; y <= py1; ++y) {
+            for (int x = px0; x <= px1; ++x)
+                rays[(y - py0) * kTile + (x - px0)] = camera.pixel_ray(x, y);
+        }
         std::size_t tile_fragments = 0;
-        for (CellId t : bins[tile]) {
-            ScreenBox b = screen_box(mesh, t, camera);
+        for (std::uint32_t index : bins[tile]) {
+            const CellId t = in.order[index];
+            ScreenBox b = boxes[index];
             b.x0 = std::max(b.x0, px0), b.y0 = std::max(b.y0, py0);
             b.x1 = std::min(b.x1, px1), b.y1 = std::min(b.y1, py1);
             const Tet& v = mesh.tet(t);
+            // Face planes n . x = w (outward), the scalar's gradient.
             Vec3 normals[4];
-            Vec3 anchors[4];
+            double offsets[4];
             for (int k = 0; k < 4; ++k) {
-                anchors[k] = mesh.point(v[kTetFaceVertices[k][0]]);
-                normals[k] = glm::cross(mesh.point(v[kTetFaceVertices[k][1]]) - anchors[k],
-                                        mesh.point(v[kTetFaceVertices[k][2]]) - anchors[k]);
+                const Vec3& a = mesh.point(v[kTetFaceVertices[k][0]]);
+                normals[k] = glm::cross(mesh.point(v[kTetFaceVertices[k][1]]) - a,
+                                        mesh.point(v[kTetFaceVertices[k][2]]) - a);
+                offsets[k] = glm::dot(normals[k], a);
             }
             const Vec3& p0 = mesh.point(v[0]);
             const double s0 = in.scalar[v[0]];
@@ -114,32 +127,45 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                                    mesh.point(v[3]) - p0);
             const Vec3 ds(in.scalar[v[1]] - s0, in.scalar[v[2]] - s0, in.scalar[v[3]] - s0);
             const Vec3 gradient = glm::inverse(glm::transpose(edges)) * ds;
+            // Perspective: every ray starts at the eye, so the numerators are per cell.
+            double eye_num[4] = {0, 0, 0, 0};
+            double s_eye = 0;
+            if (!orthographic) {
+                for (int k = 0; k < 4; ++k)
+                    eye_num[k] = offsets[k] - glm::dot(normals[k], camera.eye());
+                s_eye = s0 + glm::dot(gradient, camera.eye() - p0);
+            }
             for (int y = b.y0; y <= b.y1; ++y) {
                 for (int x = b.x0; x <= b.x1; ++x) {
-                    const Ray ray = camera.pixel_ray(x, y);
+                    const Ray& ray = rays[(y - py0) * kTile + (x - px0)];
                     double t_in = 0.0;  // clipped at the eye (near plane)
                     double t_out = std::numeric_limits<double>::infinity();
                     bool inside = true;
-                    for (int k = 0; k < 4 && inside; ++k) {
+                    for (int k = 0; k < 4; ++k) {
                         const double denom = glm::dot(normals[k], ray.direction);
-                        const double num = glm::dot(normals[k], anchors[k] - ray.origin);
+                        const double num = orthographic
+                                               ? offsets[k] - glm::dot(normals[k], ray.origin)
+                                               : eye_num[k];
                         if (denom < 0) {
                             t_in = std::max(t_in, num / denom);
                         } else if (denom > 0) {
                             t_out = std::min(t_out, num / denom);
                         } else if (num < 0 || (num == 0 && !owns_plane(normals[k]))) {
                             inside = false;
+                            break;
                         }
                     }
-                    if (!inside) continue;
+                    if (!inside || !(t_out > t_in)) continue;
                     const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
-                    if (in.opaque_depth) t_out = std::min(t_out, (*in.opaque_depth)[pixel]);
-                    if (!(t_out > t_in)) continue;
-                    const double s_in =
-                        s0 + glm::dot(gradient, ray.origin + t_in * ray.direction - p0);
-                    const double s_out =
-                        s0 + glm::dot(gradient, ray.origin + t_out * ray.direction - p0);
-                    const ShadedSegment seg = in.shader->shade(s_in, s_out, t_out - t_in);
+                    if (in.opaque_depth) {
+                        t_out = std::min(t_out, (*in.opaque_depth)[pixel]);
+                        if (!(t_out > t_in)) continue;
+                    }
+                    const double s_origin =
+                        orthographic ? s0 + glm::dot(gradient, ray.origin - p0) : s_eye;
+                    const double slope = glm::dot(gradient, ray.direction);
+                    const ShadedSegment seg = in.shader->shade(
+                        s_origin + t_in * slope, s_origin + t_out * slope, t_out - t_in);
                     Vec3f& dst = image.pixels[pixel];
                     dst = seg.color + (1.0f - seg.alpha) * dst;
                     ++tile_fragments;

@@ -8,7 +8,7 @@ namespace tr {
 namespace {
 
 constexpr int kExpSize = 256;
-constexpr int kPreScalars = 128;
+constexpr int kPreScalars = 64;
 constexpr int kPreLengths = 32;
 // Sub-step limits of the direct integration: optical depth and scalar change per step.
 constexpr double kMaxDepthStep = 0.02;
