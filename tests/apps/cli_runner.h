@@ -1,0 +1,23 @@
+#pragma once
+// Runs the tetrender executable from tests: exit code and captured stdout / stderr.
+
+#include <string>
+
+namespace tr::testing {
+
+struct CliRun {
+    int exit_code = -1;
+    std::string out;
+    std::string err;
+};
+
+// Runs `tetrender <args>` (args is shell-quoted by the caller) and captures its output.
+CliRun run_cli(const std::string& args);
+
+// Single-quotes a string for the shell.
+std::string shell_quote(const std::string& s);
+
+// A fresh empty directory under the system temp dir.
+std::string make_temp_dir();
+
+}  // namespace tr::testing

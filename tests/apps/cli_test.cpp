@@ -1,0 +1,139 @@
+// The tetrender command line: help, usage errors, bad files, info and tetrahedralize on
+// generated meshes.
+#include <tests/apps/cli_runner.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+namespace tr {
+namespace {
+
+using testing::make_temp_dir;
+using testing::run_cli;
+using testing::shell_quote;
+
+// One-line error on stderr, nothing else.
+void expect_one_line_error(const testing::CliRun& run) {
+    EXPECT_EQ(run.exit_code, 1) << run.err;
+    ASSERT_FALSE(run.err.empty());
+    EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+    EXPECT_NE(run.err.find("error"), std::string::npos) << run.err;
+}
+
+std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
+    const std::string path = dir + "/" + name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+// Two unit cubes side by side as a legacy ASCII .vtk with a point and a cell scalar.
+const char* kTwoHexes = R"(# vtk DataFile Version 3.0
+two hexes
+ASCII
+DATASET UNSTRUCTURED_GRID
+POINTS 12 double
+0 0 0  1 0 0  1 1 0  0 1 0  0 0 1  1 0 1  1 1 1  0 1 1
+2 0 0  2 1 0  2 0 1  2 1 1
+CELLS 2 18
+8 0 1 2 3 4 5 6 7
+8 1 8 9 2 5 10 11 6
+CELL_TYPES 2
+12
+12
+POINT_DATA 12
+SCALARS temperature float 1
+LOOKUP_TABLE default
+0 1 1 0 0 1 1 0 2 2 2 2
+CELL_DATA 2
+SCALARS id float 1
+LOOKUP_TABLE default
+5 7
+)";
+
+TEST(Cli, HelpAndVersion) {
+    auto help = run_cli("--help");
+    EXPECT_EQ(help.exit_code, 0);
+    for (const char* cmd : {"info", "tetrahedralize", "demo"}) {
+        EXPECT_NE(help.out.find(cmd), std::string::npos) << cmd;
+        auto sub = run_cli(std::string(cmd) + " --help");
+        EXPECT_EQ(sub.exit_code, 0) << cmd;
+        EXPECT_NE(sub.out.find("Usage"), std::string::npos) << sub.out;
+    }
+    EXPECT_EQ(run_cli("--version").exit_code, 0);
+}
+
+TEST(Cli, UsageErrorsExitWithTwo) {
+    EXPECT_EQ(run_cli("").exit_code, 2);
+    EXPECT_EQ(run_cli("frobnicate").exit_code, 2);
+    EXPECT_EQ(run_cli("info").exit_code, 2);
+    EXPECT_EQ(run_cli("info a.vtu --time-step -3").exit_code, 2);
+}
+
+TEST(Cli, InfoDescribesAMesh) {
+    const std::string dir = make_temp_dir();
+    const std::string path = write_file(dir, "two.vtk", kTwoHexes);
+    auto run = run_cli("info --json " + shell_quote(path));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto j = nlohmann::json::parse(run.out);
+    EXPECT_EQ(j["points"], 12);
+    EXPECT_EQ(j["cells"], 2);
+    EXPECT_EQ(j["cells_by_type"]["hexahedron"], 2);
+    EXPECT_EQ(j["tetrahedralization"]["tets"], 12);
+    EXPECT_NEAR(j["tetrahedralization"]["volume"].get<double>(), 2.0, 1e-12);
+    EXPECT_EQ(j["boundary_faces"], 20);  // 10 unit squares, two triangles each
+    EXPECT_EQ(j["convex"], true);
+    EXPECT_EQ(j["point_arrays"][0]["name"], "temperature");
+    EXPECT_EQ(j["cell_arrays"][0]["name"], "id");
+    auto text = run_cli("info " + shell_quote(path));
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("hexahedron 2"), std::string::npos) << text.out;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, TetrahedralizeWritesAVtuThatReadsBack) {
+    const std::string dir = make_temp_dir();
+    const std::string path = write_file(dir, "two.vtk", kTwoHexes);
+    const std::string out = dir + "/two_tets.vtu";
+    auto run = run_cli("tetrahedralize " + shell_quote(path) + " -o " + shell_quote(out));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    auto info = run_cli("info --json " + shell_quote(out));
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    const auto j = nlohmann::json::parse(info.out);
+    EXPECT_EQ(j["cells_by_type"]["tetra"], 12);
+    EXPECT_NEAR(j["tetrahedralization"]["volume"].get<double>(), 2.0, 1e-12);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CliBadInput, MissingEmptyAndGarbageFilesGiveOneLineErrors) {
+    const std::string dir = make_temp_dir();
+    expect_one_line_error(run_cli("info " + shell_quote(dir + "/nope.vtu")));
+    expect_one_line_error(run_cli("info " + shell_quote(write_file(dir, "empty.vtu", ""))));
+    expect_one_line_error(
+        run_cli("info " + shell_quote(write_file(dir, "junk.vtk", "\x01\x02garbage\xff"))));
+    expect_one_line_error(run_cli("info " + shell_quote(write_file(dir, "mesh.xyz", "1 2 3"))));
+    std::string truncated = kTwoHexes;
+    truncated.resize(truncated.size() / 2);
+    expect_one_line_error(
+        run_cli("info " + shell_quote(write_file(dir, "truncated.vtk", truncated))));
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CliBadInput, NoHalfWrittenOutputOnFailure) {
+    const std::string dir = make_temp_dir();
+    const std::string out = dir + "/out.vtu";
+    auto run =
+        run_cli("tetrahedralize " + shell_quote(dir + "/missing.vtk") + " -o " + shell_quote(out));
+    expect_one_line_error(run);
+    EXPECT_FALSE(std::filesystem::exists(out));
+    const std::string in = write_file(dir, "two.vtk", kTwoHexes);
+    auto unwritable = run_cli("tetrahedralize " + shell_quote(in) + " -o " +
+                              shell_quote(dir + "/no/such/dir/out.vtu"));
+    expect_one_line_error(unwritable);
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tr

@@ -1,0 +1,147 @@
+// TetGen surface meshing: closed surfaces give the enclosed volume; bad surfaces give errors.
+#include <mesh/copyleft/tetgen_mesher.h>
+#include <mesh/face_adjacency.h>
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace tr {
+namespace {
+
+// The 12 triangles of the box [lo, hi], outward, appended to `surface`.
+void add_box(SurfaceMesh& surface, const Vec3& lo, const Vec3& hi) {
+    const auto first = static_cast<std::uint32_t>(surface.points.size());
+    for (int c = 0; c < 8; ++c) {
+        surface.points.emplace_back((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y,
+                                    (c & 4) ? hi.z : lo.z);
+    }
+    const std::array<std::array<std::uint32_t, 4>, 6> quads = {
+        {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}}};
+    for (const auto& q : quads) {
+        surface.triangles.push_back({first + q[0], first + q[1], first + q[2]});
+        surface.triangles.push_back({first + q[0], first + q[2], first + q[3]});
+    }
+}
+
+SurfaceMesh unit_cube() {
+    SurfaceMesh surface;
+    surface.name = "cube";
+    add_box(surface, Vec3(0.0), Vec3(1.0));
+    return surface;
+}
+
+double checked_volume(const TetMesh& mesh) {
+    double volume = 0;
+    for (CellId t = 0; t < mesh.num_tets(); ++t) {
+        const double v = mesh.tet_volume(t);
+        EXPECT_GT(v, 0.0) << "tet " << t;
+        volume += v;
+    }
+    return volume;
+}
+
+TEST(TetgenMesher, ClosedCubeGivesUnitVolume) {
+    auto mesh = tetgen_mesh_surface(unit_cube());
+    ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+    EXPECT_GE(mesh->num_tets(), 5u);
+    EXPECT_NEAR(checked_volume(*mesh), 1.0, 1e-9);
+    auto adjacency = build_face_adjacency(*mesh);
+    ASSERT_TRUE(adjacency.ok());
+    EXPECT_TRUE(check_convexity(*mesh, *adjacency).convex);
+}
+
+TEST(TetgenMesher, MaxVolumeIsRespected) {
+    for (double max_volume : {0.01, 0.001, 0.0001}) {
+        SCOPED_TRACE(max_volume);
+        TetgenOptions options;
+        options.max_volume = max_volume;
+        auto mesh = tetgen_mesh_surface(unit_cube(), options);
+        ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+        EXPECT_GE(static_cast<double>(mesh->num_tets()), 1.0 / max_volume);
+        for (CellId t = 0; t < mesh->num_tets(); ++t) {
+            ASSERT_LE(mesh->tet_volume(t), max_volume * (1 + 1e-9)) << "tet " << t;
+        }
+        EXPECT_NEAR(checked_volume(*mesh), 1.0, 1e-9);
+        EXPECT_TRUE(build_face_adjacency(*mesh).ok());
+    }
+}
+
+TEST(TetgenMesher, NoQualityAndExtraSwitches) {
+    TetgenOptions options;
+    options.quality_ratio = 0;
+    options.extra_switches = "YT0.00000001";
+    auto mesh = tetgen_mesh_surface(unit_cube(), options);
+    ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+    EXPECT_NEAR(checked_volume(*mesh), 1.0, 1e-9);
+}
+
+TEST(TetgenMesher, CavityGivenByAHolePoint) {
+    SurfaceMesh surface;
+    add_box(surface, Vec3(0.0), Vec3(3.0));
+    add_box(surface, Vec3(1.0), Vec3(2.0));
+    surface.holes.push_back(Vec3(1.5));
+    TetgenOptions options;
+    options.max_volume = 0.05;
+    auto mesh = tetgen_mesh_surface(surface, options);
+    ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+    EXPECT_NEAR(checked_volume(*mesh), 26.0, 26e-9);
+    auto adjacency = build_face_adjacency(*mesh);
+    ASSERT_TRUE(adjacency.ok());
+    EXPECT_EQ(check_convexity(*mesh, *adjacency).num_boundary_components, 2u);
+}
+
+void expect_error(const SurfaceMesh& surface, const TetgenOptions& options, ErrorCode code,
+                  const std::string& needle) {
+    auto mesh = tetgen_mesh_surface(surface, options);
+    ASSERT_FALSE(mesh.ok());
+    EXPECT_EQ(mesh.error().code, code) << mesh.error().to_string();
+    EXPECT_NE(mesh.error().to_string().find(needle), std::string::npos)
+        << mesh.error().to_string();
+    EXPECT_EQ(mesh.error().to_string().find('\n'), std::string::npos);
+}
+
+TEST(TetgenMesher, OpenSurfaceIsAnError) {
+    SurfaceMesh surface = unit_cube();
+    surface.triangles.pop_back();
+    expect_error(surface, {}, ErrorCode::kInvalidMesh, "not closed");
+}
+
+TEST(TetgenMesher, SelfIntersectingSurfaceIsAnError) {
+    SurfaceMesh surface;
+    add_box(surface, Vec3(0.0), Vec3(1.0));
+    add_box(surface, Vec3(0.5, 0.3, 0.4), Vec3(1.5, 1.3, 1.4));
+    expect_error(surface, {}, ErrorCode::kInvalidMesh, "intersect");
+}
+
+TEST(TetgenMesher, BadIndicesPointsAndEmptySurfacesAreErrors) {
+    SurfaceMesh surface = unit_cube();
+    surface.triangles[3][1] = 99;
+    expect_error(surface, {}, ErrorCode::kInvalidMesh, "triangle 3 uses point 99");
+    surface = unit_cube();
+    surface.triangles[2][1] = surface.triangles[2][0];
+    expect_error(surface, {}, ErrorCode::kInvalidMesh, "triangle 2 repeats");
+    surface = unit_cube();
+    surface.points[5].x = std::nan("");
+    expect_error(surface, {}, ErrorCode::kInvalidMesh, "point 5");
+    expect_error(SurfaceMesh{}, {}, ErrorCode::kInvalidMesh, "no triangles");
+}
+
+TEST(TetgenMesher, BadOptionsAreErrors) {
+    TetgenOptions options;
+    options.extra_switches = "k";  // would write a VTK file
+    expect_error(unit_cube(), options, ErrorCode::kInvalidArgument, "'k'");
+    options.extra_switches = "p;rm";
+    expect_error(unit_cube(), options, ErrorCode::kInvalidArgument, "';'");
+    options = {};
+    options.quality_ratio = 0.5;
+    expect_error(unit_cube(), options, ErrorCode::kInvalidArgument, "quality_ratio");
+    options = {};
+    options.max_volume = -1;
+    expect_error(unit_cube(), options, ErrorCode::kInvalidArgument, "max_volume");
+}
+
+}  // namespace
+}  // namespace tr
