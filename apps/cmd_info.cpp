@@ -110,6 +110,7 @@ int run_info(const InfoArgs& args) {
         {"inverted_cells", loaded.report.num_inverted_cells},
         {"degenerate_cells", loaded.report.num_degenerate_cells},
         {"degenerate_tets", loaded.report.num_degenerate_tets},
+        {"tangled_cells", loaded.report.num_tangled_cells},
         {"skipped_cells", loaded.report.num_skipped_cells},
         {"volume", mesh.real_volume()},
     };
@@ -170,6 +171,10 @@ int run_info(const InfoArgs& args) {
         loaded.report.num_degenerate_cells, loaded.report.num_degenerate_tets);
     if (loaded.report.num_skipped_cells) {
         std::printf(", %zu unsupported cells skipped", loaded.report.num_skipped_cells);
+    }
+    if (loaded.report.num_tangled_cells) {
+        std::printf(", %zu tangled cells (no corner sees all their faces: their tets overlap)",
+                    loaded.report.num_tangled_cells);
     }
     std::printf("\n");
     std::printf("bounds:      x [%g, %g]  y [%g, %g]  z [%g, %g]\n", bounds.lo.x, bounds.hi.x,

@@ -26,33 +26,42 @@ Status finish(const std::filesystem::path& tmp, const std::filesystem::path& pat
     return {};
 }
 
+// The libpng calls, in a function of their own so that nothing lives across setjmp.
+bool encode_png(FILE* file, const Image& image, const std::vector<std::uint8_t>& rgb) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    if (!png) return false;
+    png_infop info = png_create_info_struct(png);
+    if (!info) {
+        png_destroy_write_struct(&png, nullptr);
+        return false;
+    }
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        return false;
+    }
+    png_init_io(png, file);
+    png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
+                 static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    for (int y = 0; y < image.height; ++y) {
+        png_write_row(
+            png, const_cast<png_bytep>(rgb.data() + static_cast<std::size_t>(y) * image.width * 3));
+    }
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    return true;
+}
+
 }  // namespace
 
 Status write_png(const Image& image, const std::filesystem::path& path) {
     const auto tmp = temp_path(path);
     FILE* file = std::fopen(tmp.c_str(), "wb");
     if (!file) return make_error(ErrorCode::kIo, "cannot create the file", path.string());
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-    png_infop info = png ? png_create_info_struct(png) : nullptr;
-    bool ok = png && info;
-    const std::vector<std::uint8_t> rgb = to_rgb8(image);
-    if (ok && setjmp(png_jmpbuf(png))) {
-        ok = false;
-    } else if (ok) {
-        png_init_io(png, file);
-        png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
-                     static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_RGB,
-                     PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-        png_write_info(png, info);
-        for (int y = 0; y < image.height; ++y) {
-            png_write_row(png, const_cast<png_bytep>(rgb.data() + static_cast<std::size_t>(y) *
-                                                                      image.width * 3));
-        }
-        png_write_end(png, nullptr);
-    }
-    png_destroy_write_struct(png ? &png : nullptr, info ? &info : nullptr);
-    ok = (std::fclose(file) == 0) && ok;
-    return finish(tmp, path, ok);
+    const bool encoded = encode_png(file, image, to_rgb8(image));
+    const bool closed = std::fclose(file) == 0;
+    return finish(tmp, path, encoded && closed);
 }
 
 Status write_pfm(const Image& image, const std::filesystem::path& path) {

@@ -272,13 +272,15 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
                       corner[4], corner[5], corner[7], corner[6]};
             type = CellType::kHexahedron;
         }
-        cell_tets.clear();
-        if (type == CellType::kTetra) {
-            cell_tets.push_back({corner[0], corner[1], corner[2], corner[3]});
-        } else {
-            const int apex_local = static_cast<int>(
-                std::min_element(corner.begin(), corner.begin() + corners) - corner.begin());
-            const PointId apex = corner[apex_local];
+        // Cone from `apex` over the faces not containing it; returns the summed signed volume
+        // (times 6) and whether the good tets all have that sign.
+        struct Cone {
+            double volume = 0;
+            std::size_t good = 0;
+            bool consistent = true;
+        };
+        auto cone = [&](PointId apex) {
+            cell_tets.clear();
             for (const std::vector<int>& face : faces_of(type)) {
                 bool has_apex = false;
                 for (int v : face) has_apex = has_apex || corner[v] == apex;
@@ -296,17 +298,48 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
                     cell_tets.push_back({s, d, b, apex});
                 }
             }
-        }
-        double cell_volume = 0.0;
-        std::size_t good = 0;
-        for (Tet& t : cell_tets) {
-            if (degenerate(t)) {
-                t[0] = kNoCell;
-                continue;
+            Cone result;
+            int signs = 0;
+            for (Tet& t : cell_tets) {
+                if (degenerate(t)) {
+                    t[0] = kNoCell;
+                    continue;
+                }
+                const double v = orient3d(points[t[0]], points[t[1]], points[t[2]], points[t[3]]);
+                result.volume += v;
+                signs |= v > 0 ? 1 : 2;
+                ++result.good;
             }
-            cell_volume += orient3d(points[t[0]], points[t[1]], points[t[2]], points[t[3]]);
-            ++good;
+            result.consistent = signs != 3;
+            return result;
+        };
+        Cone split;
+        if (type == CellType::kTetra) {
+            cell_tets.assign(1, {corner[0], corner[1], corner[2], corner[3]});
+            split.good = degenerate(cell_tets[0]) ? 0 : 1;
+            if (split.good) {
+                split.volume = orient3d(points[corner[0]], points[corner[1]], points[corner[2]],
+                                        points[corner[3]]);
+            }
+        } else {
+            // The smallest-id corner first; a cell that is not convex (twisted, crushed) may
+            // need another corner to see all its faces. The faces' triangles stay the same
+            // whichever corner is the apex, so the split stays conforming.
+            std::vector<PointId> apexes(corner.begin(), corner.begin() + corners);
+            std::sort(apexes.begin(), apexes.end());
+            apexes.erase(std::unique(apexes.begin(), apexes.end()), apexes.end());
+            split = cone(apexes[0]);
+            for (std::size_t a = 1; a < apexes.size() && !split.consistent; ++a) {
+                const Cone other = cone(apexes[a]);
+                if (other.consistent && other.good > 0) split = other;
+            }
+            if (!split.consistent) {
+                split = cone(apexes[0]);
+                ++report.num_tangled_cells;
+            }
         }
+        const double cell_volume = split.volume;
+        const std::size_t good = split.good;
         if (good == 0) {
             ++report.num_degenerate_cells;
             continue;

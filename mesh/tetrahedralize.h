@@ -7,7 +7,8 @@
 // smallest (merged) global index, and each cell is the cone from its smallest-index vertex over
 // the faces that do not contain it. A face's triangulation thus depends only on its own global
 // ids, so neighbours agree: no cracks, no T-junctions. For a quad this is the diagonal through
-// its smallest-index vertex.
+// its smallest-index vertex. A non-convex cell (twisted or crushed) whose cone from that vertex
+// would mix orientations is coned from another corner instead, when one sees all its faces.
 
 #include <core/progress.h>
 #include <core/result.h>
@@ -41,8 +42,10 @@ struct TetrahedralizeReport {
     std::size_t num_inverted_cells = 0;           // input cells with negative volume, fixed
     std::size_t num_degenerate_cells = 0;         // input cells of zero volume, dropped
     std::size_t num_degenerate_tets = 0;          // zero-volume tets dropped from kept cells
-    std::size_t num_skipped_cells = 0;            // unsupported cells skipped (see options)
-    std::size_t num_tets = 0;                     // tets in the result
+    // Non-convex cells that no corner sees whole: their tets overlap (counted, kept).
+    std::size_t num_tangled_cells = 0;
+    std::size_t num_skipped_cells = 0;  // unsupported cells skipped (see options)
+    std::size_t num_tets = 0;           // tets in the result
 };
 
 // Converts `input` to tets. Point fields are kept (merged points keep the first point's

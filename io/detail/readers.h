@@ -1,0 +1,65 @@
+#pragma once
+// Private: one function per file format. Each throws IoError (common.h) on failure and returns
+// a mesh that the caller validates. std only: the VTK-based ones live in vtk_readers.cpp, the
+// hand-parsed ones in text_readers.cpp.
+
+#include <io/detail/common.h>
+#include <mesh/surface_mesh.h>
+#include <mesh/unstructured_mesh.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tr::io_detail {
+
+namespace fs = std::filesystem;
+
+// VTK XML: .vtu .pvtu .vts .vtr .vti .vtp (`ext` lower-case with its dot).
+UnstructuredMesh read_vtk_xml(const fs::path& path, const std::string& ext,
+                              const ProgressRange& progress);
+// Legacy .vtk: unstructured, structured, rectilinear grids, structured points, point clouds.
+UnstructuredMesh read_vtk_legacy(const fs::path& path, const ProgressRange& progress);
+// Exodus II: all blocks, variables, side sets; step `time_step`.
+UnstructuredMesh read_exodus(const fs::path& path, int time_step, const ProgressRange& progress);
+// PLOT3D: `path` is the xyz file; the q file, when present, is found by replacing "xyz".
+UnstructuredMesh read_plot3d(const fs::path& path, const ProgressRange& progress);
+
+// One <DataSet> of a .pvd collection.
+struct PvdEntry {
+    double time = 0.0;
+    int part = 0;
+    fs::path file;  // resolved against the .pvd's folder
+};
+std::vector<PvdEntry> parse_pvd(const fs::path& path);
+
+// Hand-parsed text formats.
+UnstructuredMesh read_tetgen(const fs::path& path, const ProgressRange& progress);
+UnstructuredMesh read_csv_points(const fs::path& path, const ProgressRange& progress);
+UnstructuredMesh read_mfem(const fs::path& path, const ProgressRange& progress);
+
+// Surfaces: .stl .ply .obj .vtp .vtk through VTK; .off and .poly by hand.
+SurfaceMesh read_vtk_surface(const fs::path& path, const std::string& ext);
+SurfaceMesh read_off(const fs::path& path);
+SurfaceMesh read_poly(const fs::path& path);
+
+}  // namespace tr::io_detail
+
+namespace tr::io_detail {
+
+// Cheap structural checks of binary formats before VTK reads them (binary_checks.cpp).
+// Exodus II: the netCDF classic header (CDF1/2/5) is parsed and every variable's data must
+// lie inside the file; for HDF5, the superblock's end-of-file address must not exceed the
+// file size. Throws IoError (kParse, "truncated ...") otherwise.
+void check_exodus_container(const fs::path& path);
+
+// PLOT3D: finds the binary layout (byte order, Fortran records, multi-grid, precision, IBLANK)
+// whose size matches the xyz file exactly, and checks the q file (when not empty) against the
+// same grid. Throws IoError when no 3-D layout matches.
+void check_plot3d(const fs::path& xyz, const fs::path& q);
+
+// PLY: parses the header (vertex with x, y, z; face with a vertex_indices list) and walks the
+// body (ASCII: tokens per line; binary: sizes and list lengths) so that it fits the file.
+void check_ply(const fs::path& path);
+
+}  // namespace tr::io_detail

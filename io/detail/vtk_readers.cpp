@@ -1,0 +1,1034 @@
+// Readers that go through VTK: XML and legacy VTK files, Exodus II, PLOT3D, .pvd collections,
+// and surfaces (STL, PLY, OBJ, polydata). VTK is asked to read only after a cheap check that the
+// file looks like what its extension says; everything VTK reports is captured and turned into
+// an IoError.
+
+#include <io/detail/common.h>
+#include <io/detail/readers.h>
+#include <io/detail/vtk_support.h>
+
+#include <vtkAlgorithm.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkCommand.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
+#include <vtkDataObjectTreeIterator.h>
+#include <vtkDataSetReader.h>
+#include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
+#include <vtkExodusIIReader.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkMultiBlockPLOT3DReader.h>
+#include <vtkOBJReader.h>
+#include <vtkPLYReader.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataReader.h>
+#include <vtkRectilinearGrid.h>
+#include <vtkSTLReader.h>
+#include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkStructuredGrid.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLImageDataReader.h>
+#include <vtkXMLPUnstructuredGridReader.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLRectilinearGridReader.h>
+#include <vtkXMLStructuredGridReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+#include <vtkXMLUtilities.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <sstream>
+
+namespace tr::io_detail {
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Running a VTK algorithm with progress and error capture.
+
+void on_progress(vtkObject*, unsigned long, void* client, void* call_data) {
+    if (client != nullptr && call_data != nullptr) {
+        static_cast<const ProgressRange*>(client)->report(*static_cast<double*>(call_data));
+    }
+}
+
+void on_error(vtkObject*, unsigned long, void*, void* call_data) {
+    record_vtk_error(static_cast<const char*>(call_data));
+}
+
+// Calls `step` (Update(), UpdateInformation(), ...) on `algorithm` with observers attached and
+// throws when VTK reported an error. `what` starts the message ("cannot read Exodus II").
+template <class Step>
+void vtk_call(vtkAlgorithm* algorithm, const ProgressRange& progress, const std::string& where,
+              const std::string& what, Step&& step) {
+    VtkErrorCapture capture;
+    vtkNew<vtkCallbackCommand> progress_cb;
+    progress_cb->SetCallback(on_progress);
+    progress_cb->SetClientData(const_cast<ProgressRange*>(&progress));
+    vtkNew<vtkCallbackCommand> error_cb;
+    error_cb->SetCallback(on_error);
+    const unsigned long progress_tag =
+        algorithm->AddObserver(vtkCommand::ProgressEvent, progress_cb);
+    const unsigned long error_tag = algorithm->AddObserver(vtkCommand::ErrorEvent, error_cb);
+    step();
+    algorithm->RemoveObserver(progress_tag);
+    algorithm->RemoveObserver(error_tag);
+    const unsigned long code = algorithm->GetErrorCode();
+    if (capture.has_error() || code != vtkErrorCode::NoError) {
+        std::string detail = capture.first_error();
+        if (detail.empty()) detail = vtkErrorCode::GetStringFromErrorCode(code);
+        ErrorCode ec = ErrorCode::kParse;
+        if (code == vtkErrorCode::FileNotFoundError) ec = ErrorCode::kNotFound;
+        if (code == vtkErrorCode::CannotOpenFileError) ec = ErrorCode::kIo;
+        fail(ec, what + ": " + detail, where);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Converting VTK data to our types.
+
+std::vector<Vec3> convert_points(vtkPoints* points) {
+    std::vector<Vec3> out;
+    if (points == nullptr) return out;
+    const vtkIdType n = points->GetNumberOfPoints();
+    out.resize(static_cast<std::size_t>(n));
+    vtkDataArray* data = points->GetData();
+    if (auto* f = vtkFloatArray::FastDownCast(data); f != nullptr && n > 0) {
+        const float* p = f->GetPointer(0);
+        for (vtkIdType i = 0; i < n; ++i) out[i] = Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+    } else if (auto* d = vtkDoubleArray::FastDownCast(data); d != nullptr && n > 0) {
+        const double* p = d->GetPointer(0);
+        for (vtkIdType i = 0; i < n; ++i) out[i] = Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+    } else {
+        for (vtkIdType i = 0; i < n; ++i) {
+            double p[3];
+            points->GetPoint(i, p);
+            out[i] = Vec3(p[0], p[1], p[2]);
+        }
+    }
+    return out;
+}
+
+// Arrays VTK adds for its own bookkeeping, not data.
+bool is_internal_array(const std::string& name) {
+    return name == "vtkGhostType" || name == "vtkValidPointMask";
+}
+
+std::vector<Field> convert_arrays(vtkFieldData* data, vtkIdType num_tuples, const char* kind,
+                                  const std::string& where) {
+    std::vector<Field> out;
+    if (data == nullptr) return out;
+    for (int i = 0; i < data->GetNumberOfArrays(); ++i) {
+        vtkDataArray* array = vtkDataArray::SafeDownCast(data->GetAbstractArray(i));
+        if (array == nullptr) continue;  // string and variant arrays are skipped
+        std::string name = array->GetName() != nullptr ? array->GetName() : "";
+        if (name.empty()) name = std::string(kind) + "_array_" + std::to_string(i);
+        if (is_internal_array(name) || find_field(out, name) != nullptr) continue;
+        const int nc = array->GetNumberOfComponents();
+        if (array->GetNumberOfTuples() != num_tuples) {
+            fail(ErrorCode::kParse,
+                 std::string(kind) + " array '" + name + "' has " +
+                     std::to_string(array->GetNumberOfTuples()) + " tuples, expected " +
+                     std::to_string(num_tuples),
+                 where);
+        }
+        if (nc < 1) continue;
+        const auto n = static_cast<std::size_t>(num_tuples) * static_cast<std::size_t>(nc);
+        Field field;
+        field.name = name;
+        field.num_components = nc;
+        const int type = array->GetDataType();
+        if (type == VTK_FLOAT) {
+            std::vector<float> v(n);
+            if (auto* f = vtkFloatArray::FastDownCast(array); f != nullptr && n > 0) {
+                std::memcpy(v.data(), f->GetPointer(0), n * sizeof(float));
+            } else {
+                for (std::size_t k = 0; k < n; ++k) {
+                    v[k] = static_cast<float>(array->GetComponent(static_cast<vtkIdType>(k / nc),
+                                                                  static_cast<int>(k % nc)));
+                }
+            }
+            field.values = std::move(v);
+        } else {
+            std::vector<double> v(n);
+            if (auto* d = vtkDoubleArray::FastDownCast(array); d != nullptr && n > 0) {
+                std::memcpy(v.data(), d->GetPointer(0), n * sizeof(double));
+            } else {
+                for (std::size_t k = 0; k < n; ++k) {
+                    v[k] = array->GetComponent(static_cast<vtkIdType>(k / nc),
+                                               static_cast<int>(k % nc));
+                }
+            }
+            field.values = std::move(v);
+        }
+        out.push_back(std::move(field));
+    }
+    return out;
+}
+
+template <class Array>
+void copy_ids(Array* array, std::vector<std::int64_t>& out) {
+    const vtkIdType n = array->GetNumberOfValues();
+    out.resize(static_cast<std::size_t>(n));
+    for (vtkIdType i = 0; i < n; ++i) out[i] = static_cast<std::int64_t>(array->GetValue(i));
+}
+
+UnstructuredMesh from_unstructured(vtkUnstructuredGrid* grid, const std::string& where) {
+    UnstructuredMesh mesh;
+    mesh.points = convert_points(grid->GetPoints());
+    const vtkIdType num_cells = grid->GetNumberOfCells();
+    if (num_cells > 0) {
+        vtkCellArray* cells = grid->GetCells();
+        vtkUnsignedCharArray* types = grid->GetCellTypesArray();
+        if (cells == nullptr || types == nullptr || types->GetNumberOfValues() != num_cells) {
+            fail(ErrorCode::kParse, "cell types do not match the cell count", where);
+        }
+        if (cells->IsStorage64Bit()) {
+            copy_ids(cells->GetOffsetsArray64(), mesh.offsets);
+            copy_ids(cells->GetConnectivityArray64(), mesh.connectivity);
+        } else {
+            copy_ids(cells->GetOffsetsArray32(), mesh.offsets);
+            copy_ids(cells->GetConnectivityArray32(), mesh.connectivity);
+        }
+        mesh.types.resize(static_cast<std::size_t>(num_cells));
+        for (vtkIdType c = 0; c < num_cells; ++c) {
+            mesh.types[c] = static_cast<CellType>(types->GetValue(c));
+        }
+    }
+    mesh.point_fields =
+        convert_arrays(grid->GetPointData(), grid->GetNumberOfPoints(), "point", where);
+    mesh.cell_fields = convert_arrays(grid->GetCellData(), num_cells, "cell", where);
+    return mesh;
+}
+
+// Structured kinds (structured grid, rectilinear grid, image data) become hexahedra in VTK
+// order, point id = i + ni * (j + nj * k).
+UnstructuredMesh from_structured(vtkDataSet* data, const int dims[3], const std::string& where) {
+    if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0 || data->GetNumberOfPoints() == 0) {
+        fail(ErrorCode::kInvalidMesh, "empty mesh", where);
+    }
+    if (dims[0] == 1 || dims[1] == 1 || dims[2] == 1) {
+        fail(ErrorCode::kInvalidMesh,
+             "2-D grid: not a volume (dimensions " + std::to_string(dims[0]) + " x " +
+                 std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + ")",
+             where);
+    }
+    const std::int64_t ni = dims[0], nj = dims[1], nk = dims[2];
+    if (ni * nj * nk != data->GetNumberOfPoints()) {
+        fail(ErrorCode::kParse,
+             "grid dimensions " + std::to_string(ni) + " x " + std::to_string(nj) + " x " +
+                 std::to_string(nk) + " do not match " + std::to_string(data->GetNumberOfPoints()) +
+                 " points",
+             where);
+    }
+    UnstructuredMesh mesh;
+    if (auto* point_set = vtkPointSet::SafeDownCast(data)) {
+        mesh.points = convert_points(point_set->GetPoints());
+    } else {
+        mesh.points.resize(static_cast<std::size_t>(data->GetNumberOfPoints()));
+        for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i) {
+            double p[3];
+            data->GetPoint(i, p);
+            mesh.points[i] = Vec3(p[0], p[1], p[2]);
+        }
+    }
+    auto* structured = vtkStructuredGrid::SafeDownCast(data);
+    const bool blanking = structured != nullptr && structured->HasAnyBlankCells();
+    const std::int64_t num_cells = (ni - 1) * (nj - 1) * (nk - 1);
+    std::vector<vtkIdType> kept;
+    mesh.offsets.reserve(static_cast<std::size_t>(num_cells) + 1);
+    mesh.offsets.push_back(0);
+    mesh.connectivity.reserve(static_cast<std::size_t>(num_cells) * 8);
+    mesh.types.reserve(static_cast<std::size_t>(num_cells));
+    const auto id = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+        return i + ni * (j + nj * k);
+    };
+    for (std::int64_t k = 0; k + 1 < nk; ++k) {
+        for (std::int64_t j = 0; j + 1 < nj; ++j) {
+            for (std::int64_t i = 0; i + 1 < ni; ++i) {
+                const vtkIdType cell = i + (ni - 1) * (j + (nj - 1) * k);
+                if (blanking && !structured->IsCellVisible(cell)) continue;
+                if (blanking) kept.push_back(cell);
+                for (std::int64_t kk : {k, k + 1}) {
+                    mesh.connectivity.push_back(id(i, j, kk));
+                    mesh.connectivity.push_back(id(i + 1, j, kk));
+                    mesh.connectivity.push_back(id(i + 1, j + 1, kk));
+                    mesh.connectivity.push_back(id(i, j + 1, kk));
+                }
+                mesh.offsets.push_back(static_cast<std::int64_t>(mesh.connectivity.size()));
+                mesh.types.push_back(CellType::kHexahedron);
+            }
+        }
+    }
+    mesh.point_fields =
+        convert_arrays(data->GetPointData(), data->GetNumberOfPoints(), "point", where);
+    mesh.cell_fields = convert_arrays(data->GetCellData(), num_cells, "cell", where);
+    if (blanking) {
+        for (Field& f : mesh.cell_fields) {
+            const auto nc = static_cast<std::size_t>(f.num_components);
+            std::visit(
+                [&](auto& v) {
+                    std::remove_reference_t<decltype(v)> w;
+                    w.reserve(kept.size() * nc);
+                    for (vtkIdType c : kept) {
+                        for (std::size_t q = 0; q < nc; ++q) w.push_back(v[c * nc + q]);
+                    }
+                    v = std::move(w);
+                },
+                f.values);
+        }
+    }
+    return mesh;
+}
+
+UnstructuredMesh from_polydata_points(vtkPolyData* poly, const std::string& where) {
+    if (poly->GetNumberOfPolys() + poly->GetNumberOfStrips() > 0) {
+        fail(ErrorCode::kUnsupported,
+             "polydata with " +
+                 std::to_string(poly->GetNumberOfPolys() + poly->GetNumberOfStrips()) +
+                 " polygons is a surface, not a volume: use it as a surface (read_surface)",
+             where);
+    }
+    if (poly->GetNumberOfLines() > 0) {
+        fail(ErrorCode::kUnsupported, "polydata with lines is not a volume or a point cloud",
+             where);
+    }
+    UnstructuredMesh mesh;
+    mesh.points = convert_points(poly->GetPoints());
+    mesh.point_fields =
+        convert_arrays(poly->GetPointData(), poly->GetNumberOfPoints(), "point", where);
+    return mesh;
+}
+
+UnstructuredMesh convert_data_object(vtkDataObject* object, const std::string& where) {
+    if (object == nullptr) fail(ErrorCode::kParse, "the reader produced no data", where);
+    if (auto* grid = vtkUnstructuredGrid::SafeDownCast(object))
+        return from_unstructured(grid, where);
+    if (auto* sg = vtkStructuredGrid::SafeDownCast(object)) {
+        int dims[3];
+        sg->GetDimensions(dims);
+        return from_structured(sg, dims, where);
+    }
+    if (auto* rg = vtkRectilinearGrid::SafeDownCast(object)) {
+        int dims[3];
+        rg->GetDimensions(dims);
+        return from_structured(rg, dims, where);
+    }
+    if (auto* image = vtkImageData::SafeDownCast(object)) {
+        int dims[3];
+        image->GetDimensions(dims);
+        return from_structured(image, dims, where);
+    }
+    if (auto* poly = vtkPolyData::SafeDownCast(object)) return from_polydata_points(poly, where);
+    if (auto* composite = vtkDataObjectTree::SafeDownCast(object)) {
+        UnstructuredMesh mesh;
+        vtkSmartPointer<vtkDataObjectTreeIterator> it;
+        it.TakeReference(composite->NewTreeIterator());
+        it->VisitOnlyLeavesOn();
+        it->SkipEmptyNodesOn();
+        for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem()) {
+            append_mesh(mesh, convert_data_object(it->GetCurrentDataObject(), where));
+        }
+        return mesh;
+    }
+    fail(ErrorCode::kUnsupported,
+         std::string("data of type ") + object->GetClassName() + " is not a mesh", where);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cheap checks before VTK sees a file.
+
+std::string xml_attribute(const std::string& text, std::size_t from, const std::string& name) {
+    const std::size_t end = text.find('>', from);
+    for (const char quote : {'"', '\''}) {
+        const std::string key = " " + name + "=" + quote;
+        const std::size_t pos = text.find(key, from);
+        if (pos == std::string::npos || (end != std::string::npos && pos > end)) continue;
+        const std::size_t start = pos + key.size();
+        const std::size_t stop = text.find(quote, start);
+        if (stop != std::string::npos) return text.substr(start, stop - start);
+    }
+    return {};
+}
+
+// Checks that a file looks like a VTK XML file of `type`; the name of the extension for errors.
+void check_vtk_xml(const fs::path& path, const std::string& type, const std::string& ext) {
+    const std::string where = path.string();
+    const std::uintmax_t size = check_readable_file(path);
+    const std::string head = read_head(path, 4096);
+    std::size_t pos = 0;
+    if (head.rfind("\xEF\xBB\xBF", 0) == 0) pos = 3;
+    while (pos < head.size() && std::isspace(static_cast<unsigned char>(head[pos]))) ++pos;
+    if (pos >= head.size() || head[pos] != '<') {
+        std::string hint;
+        if (head.rfind("# vtk DataFile", 0) == 0) hint = " (it is a legacy .vtk file)";
+        fail(ErrorCode::kParse, "not a VTK XML file: it does not start with '<'" + hint, where);
+    }
+    const std::size_t root = head.find("<VTKFile");
+    if (root == std::string::npos)
+        fail(ErrorCode::kParse, "not a VTK XML file: no <VTKFile>", where);
+    const std::string actual = xml_attribute(head, root, "type");
+    if (actual != type) {
+        fail(ErrorCode::kParse,
+             "the file is a VTK XML '" + actual + "' file, but the extension " + ext + " means '" +
+                 type + "'",
+             where);
+    }
+    if (read_tail(path, 4096).find("</VTKFile>") == std::string::npos) {
+        fail(ErrorCode::kParse, "truncated VTK XML file: no closing </VTKFile>", where);
+    }
+    // Counts VTK would allocate for before reading any data: bound them by what the file can
+    // hold even when compressed (generously: 10000 items per byte). Grids with implicit points
+    // (image data, rectilinear grids) are capped at 2^31 points.
+    const std::string piece_head = read_head(path, 1 << 16);
+    const double limit = 10000.0 * static_cast<double>(size) + 1e6;
+    for (const char* extent_attr : {" WholeExtent=", " Extent="}) {
+        for (std::size_t pos = piece_head.find(extent_attr); pos != std::string::npos;
+             pos = piece_head.find(extent_attr, pos + 1)) {
+            const std::string name(extent_attr + 1, std::strlen(extent_attr) - 2);  // "Extent"
+            const std::string value = xml_attribute(piece_head, pos - 1, name);
+            std::istringstream in(value);
+            double e[6] = {0, 0, 0, 0, 0, 0};
+            for (double& x : e) in >> x;
+            double points = 1.0;
+            for (int a = 0; a < 3; ++a) points *= std::max(0.0, e[2 * a + 1] - e[2 * a] + 1.0);
+            const double cap = type == "StructuredGrid" ? limit : 2147483648.0;
+            if (!in || !(points <= cap)) {
+                fail(ErrorCode::kParse,
+                     name + "=\"" + value + "\" is not plausible for a file of " +
+                         std::to_string(size) + " bytes",
+                     where);
+            }
+        }
+    }
+    for (std::size_t pos = piece_head.find("<Piece"); pos != std::string::npos;
+         pos = piece_head.find("<Piece", pos + 1)) {
+        for (const char* attr : {"NumberOfPoints", "NumberOfCells", "NumberOfVerts",
+                                 "NumberOfLines", "NumberOfStrips", "NumberOfPolys"}) {
+            const std::string value = xml_attribute(piece_head, pos, attr);
+            if (value.empty()) continue;
+            char* end = nullptr;
+            const double v = std::strtod(value.c_str(), &end);
+            if (*end != '\0' || !(v >= 0) || v > limit) {
+                fail(ErrorCode::kParse,
+                     std::string(attr) + "=\"" + value + "\" is not plausible for a file of " +
+                         std::to_string(size) + " bytes",
+                     where);
+            }
+        }
+    }
+}
+
+// A whitespace-separated token reader over a byte buffer (legacy VTK headers).
+struct Tokens {
+    const std::string& text;
+    std::size_t pos = 0;
+    std::string next_line() {
+        const std::size_t nl = text.find('\n', pos);
+        std::string line = text.substr(pos, nl == std::string::npos ? std::string::npos : nl - pos);
+        pos = nl == std::string::npos ? text.size() : nl + 1;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        return line;
+    }
+    bool done() const { return pos >= text.size(); }
+};
+
+std::size_t vtk_type_size(std::string type) {
+    std::transform(type.begin(), type.end(), type.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if (type == "bit") return 1;
+    if (type == "char" || type == "unsigned_char") return 1;
+    if (type == "short" || type == "unsigned_short") return 2;
+    if (type == "int" || type == "unsigned_int" || type == "float") return 4;
+    if (type == "long" || type == "unsigned_long" || type == "double" || type == "vtkidtype" ||
+        type == "vtktypeint64" || type == "vtktypeuint64") {
+        return 8;
+    }
+    return 1;
+}
+
+// Walks a legacy file section by section and checks that each keyword's data (as many values as
+// its counts promise: bytes in BINARY files, tokens in ASCII ones) is present, so that VTK never
+// meets a truncated section (its reader leaks or allocates what the header claims on some of
+// them). Unknown keywords end the walk: VTK judges the rest.
+class LegacyWalker {
+  public:
+    LegacyWalker(const std::string& data, std::size_t pos, bool binary, std::string where)
+        : data_(data), pos_(pos), binary_(binary), where_(std::move(where)) {}
+
+    // The next non-blank line, split into words; false at the end of the file.
+    bool next_line(std::vector<std::string>& words) {
+        words.clear();
+        while (pos_ < data_.size() && words.empty()) {
+            const std::size_t nl = data_.find('\n', pos_);
+            std::istringstream line(
+                data_.substr(pos_, nl == std::string::npos ? std::string::npos : nl - pos_));
+            pos_ = nl == std::string::npos ? data_.size() : nl + 1;
+            for (std::string w; line >> w;) words.push_back(w);
+        }
+        if (!words.empty()) {
+            std::transform(words[0].begin(), words[0].end(), words[0].begin(),
+                           [](unsigned char ch) { return static_cast<char>(std::toupper(ch)); });
+        }
+        return !words.empty();
+    }
+
+    // Peeks whether the next non-blank line starts with `keyword`; consumes it when it does.
+    bool take_line(const char* keyword, std::vector<std::string>& words) {
+        const std::size_t saved = pos_;
+        if (next_line(words) && words[0] == keyword) return true;
+        pos_ = saved;
+        return false;
+    }
+
+    void skip_values(std::uint64_t n, const std::string& type, const std::string& what) {
+        const std::uint64_t left = data_.size() - pos_;
+        if (binary_) {
+            std::string t = type;
+            std::transform(t.begin(), t.end(), t.begin(),
+                           [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+            const std::uint64_t bytes = t == "bit" ? (n + 7) / 8 : n * vtk_type_size(t);
+            if (n > left || bytes > left) truncated(what, bytes, left);
+            pos_ += static_cast<std::size_t>(bytes);
+            return;
+        }
+        if (n > left / 2 + 1) truncated(what, 2 * n, left);  // every ASCII value takes >= 2 bytes
+        for (std::uint64_t i = 0; i < n; ++i) {
+            while (pos_ < data_.size() && std::isspace(static_cast<unsigned char>(data_[pos_])))
+                ++pos_;
+            if (pos_ >= data_.size()) {
+                fail(ErrorCode::kParse,
+                     "truncated file: " + what + " has " + std::to_string(i) + " of " +
+                         std::to_string(n) + " values",
+                     where_);
+            }
+            while (pos_ < data_.size() && !std::isspace(static_cast<unsigned char>(data_[pos_])))
+                ++pos_;
+        }
+    }
+
+    std::uint64_t count(const std::vector<std::string>& words, std::size_t k,
+                        const std::string& line) {
+        if (k >= words.size()) fail(ErrorCode::kParse, "missing count in '" + line + "'", where_);
+        char* end = nullptr;
+        const long long v = std::strtoll(words[k].c_str(), &end, 10);
+        if (v < 0 || *end != '\0') fail(ErrorCode::kParse, "bad count in '" + line + "'", where_);
+        return static_cast<std::uint64_t>(v);
+    }
+
+  private:
+    [[noreturn]] void truncated(const std::string& what, std::uint64_t need, std::uint64_t left) {
+        fail(ErrorCode::kParse,
+             "truncated file: " + what + " needs " + std::to_string(need) + " bytes, " +
+                 std::to_string(left) + " are left",
+             where_);
+    }
+
+    const std::string& data_;
+    std::size_t pos_;
+    bool binary_;
+    std::string where_;
+};
+
+std::string join(const std::vector<std::string>& words) {
+    std::string s;
+    for (const std::string& w : words) s += (s.empty() ? "" : " ") + w;
+    return s;
+}
+
+// Checks a legacy file's header (and that its DATASET is `want_dataset` when not empty), then
+// walks its sections (LegacyWalker).
+void check_vtk_legacy(const fs::path& path, const std::string& want_dataset) {
+    const std::string where = path.string();
+    check_readable_file(path);
+    const std::string data = read_all(path);
+    if (data.rfind("# vtk DataFile Version", 0) != 0) {
+        std::string hint;
+        std::size_t p = 0;
+        while (p < data.size() && std::isspace(static_cast<unsigned char>(data[p]))) ++p;
+        if (p < data.size() && data[p] == '<') hint = " (it looks like an XML file)";
+        fail(ErrorCode::kParse,
+             "not a legacy VTK file: it does not start with '# vtk DataFile Version'" + hint,
+             where + ":1");
+    }
+    Tokens tokens{data};
+    tokens.next_line();  // version
+    tokens.next_line();  // title
+    std::string format = one_line(tokens.next_line());
+    std::transform(format.begin(), format.end(), format.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::toupper(ch)); });
+    const bool binary = format == "BINARY";
+    if (!binary && format != "ASCII") {
+        fail(ErrorCode::kParse, "line 3 must be ASCII or BINARY, not '" + format + "'",
+             where + ":3");
+    }
+    LegacyWalker walk(data, tokens.pos, binary, where);
+    std::vector<std::string> words;
+    if (!walk.next_line(words) || words[0] != "DATASET" || words.size() < 2) {
+        fail(ErrorCode::kParse, "expected 'DATASET <type>' after the header", where);
+    }
+    std::string dataset = words[1];
+    std::transform(dataset.begin(), dataset.end(), dataset.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::toupper(ch)); });
+    static const char* const kDatasets[] = {"UNSTRUCTURED_GRID", "STRUCTURED_GRID",
+                                            "RECTILINEAR_GRID", "STRUCTURED_POINTS", "POLYDATA"};
+    if (std::find_if(std::begin(kDatasets), std::end(kDatasets),
+                     [&](const char* d) { return dataset == d; }) == std::end(kDatasets)) {
+        fail(ErrorCode::kUnsupported, "legacy VTK DATASET " + dataset + " is not a mesh", where);
+    }
+    if (!want_dataset.empty() && dataset != want_dataset) {
+        fail(ErrorCode::kParse, "legacy VTK " + dataset + " is not " + want_dataset, where);
+    }
+    std::uint64_t n = 0;  // tuples of the current POINT_DATA / CELL_DATA section
+    while (walk.next_line(words)) {
+        const std::string& kw = words[0];
+        const std::string line = join(words);
+        const auto type_at = [&](std::size_t k) {
+            return k < words.size() ? words[k] : std::string("float");
+        };
+        if (kw == "POINTS") {
+            walk.skip_values(3 * walk.count(words, 1, line), type_at(2), "POINTS");
+        } else if (kw == "X_COORDINATES" || kw == "Y_COORDINATES" || kw == "Z_COORDINATES") {
+            walk.skip_values(walk.count(words, 1, line), type_at(2), kw);
+        } else if (kw == "DIMENSIONS" || kw == "ORIGIN" || kw == "SPACING" ||
+                   kw == "ASPECT_RATIO") {
+            continue;
+        } else if (kw == "CELLS" || kw == "POLYGONS" || kw == "VERTICES" || kw == "LINES" ||
+                   kw == "TRIANGLE_STRIPS") {
+            const std::uint64_t a = walk.count(words, 1, line);
+            const std::uint64_t b = walk.count(words, 2, line);
+            std::vector<std::string> sub;
+            if (walk.take_line("OFFSETS", sub)) {
+                walk.skip_values(a, sub.size() > 1 ? sub[1] : "vtktypeint64", kw + " OFFSETS");
+                if (!walk.take_line("CONNECTIVITY", sub)) {
+                    fail(ErrorCode::kParse, "truncated file: no CONNECTIVITY after OFFSETS", where);
+                }
+                walk.skip_values(b, sub.size() > 1 ? sub[1] : "vtktypeint64", kw + " CONNECTIVITY");
+            } else {
+                walk.skip_values(b, "int", kw);
+            }
+        } else if (kw == "CELL_TYPES") {
+            walk.skip_values(walk.count(words, 1, line), "int", "CELL_TYPES");
+        } else if (kw == "POINT_DATA" || kw == "CELL_DATA") {
+            n = walk.count(words, 1, line);
+        } else if (kw == "SCALARS") {
+            const std::uint64_t nc = words.size() > 3 ? walk.count(words, 3, line) : 1;
+            std::vector<std::string> sub;
+            walk.take_line("LOOKUP_TABLE", sub);
+            walk.skip_values(n * nc, type_at(2), "SCALARS " + type_at(1));
+        } else if (kw == "VECTORS" || kw == "NORMALS") {
+            walk.skip_values(3 * n, type_at(2), kw + " " + type_at(1));
+        } else if (kw == "TENSORS" || kw == "TENSORS6") {
+            walk.skip_values((kw == "TENSORS" ? 9 : 6) * n, type_at(2), kw + " " + type_at(1));
+        } else if (kw == "TEXTURE_COORDINATES") {
+            walk.skip_values(walk.count(words, 2, line) * n, type_at(3), kw);
+        } else if (kw == "GLOBAL_IDS" || kw == "PEDIGREE_IDS") {
+            walk.skip_values(n, type_at(2), kw);
+        } else if (kw == "COLOR_SCALARS") {
+            walk.skip_values(walk.count(words, 2, line) * n, binary ? "unsigned_char" : "float",
+                             kw);
+        } else if (kw == "LOOKUP_TABLE") {
+            walk.skip_values(4 * walk.count(words, 2, line), binary ? "unsigned_char" : "float",
+                             kw);
+        } else if (kw == "FIELD") {
+            const std::uint64_t arrays = walk.count(words, 2, line);
+            for (std::uint64_t i = 0; i < arrays; ++i) {
+                std::vector<std::string> a;
+                if (!walk.next_line(a))
+                    fail(ErrorCode::kParse, "truncated file: FIELD arrays missing", where);
+                if (a[0] == "NULL_ARRAY") continue;
+                if (a[0] == "METADATA") return;  // VTK 9's per-array metadata: VTK judges the rest
+                if (a.size() < 4)
+                    fail(ErrorCode::kParse, "bad FIELD array line '" + join(a) + "'", where);
+                std::string t = a[3];
+                std::transform(t.begin(), t.end(), t.begin(), [](unsigned char ch) {
+                    return static_cast<char>(std::tolower(ch));
+                });
+                if (t == "string" || t == "utf8_string" || t == "variant") return;  // VTK judges
+                const std::string al = join(a);
+                walk.skip_values(walk.count(a, 1, al) * walk.count(a, 2, al), t,
+                                 "FIELD array " + a[0]);
+            }
+        } else {
+            return;  // METADATA, INFORMATION and anything else: VTK judges the rest
+        }
+    }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+UnstructuredMesh read_vtk_xml(const fs::path& path, const std::string& ext,
+                              const ProgressRange& progress) {
+    struct Kind {
+        const char* ext;
+        const char* type;
+        const char* format;
+    };
+    static const Kind kKinds[] = {
+        {".vtu", "UnstructuredGrid", "VTK XML unstructured grid"},
+        {".pvtu", "PUnstructuredGrid", "VTK XML parallel unstructured grid"},
+        {".vts", "StructuredGrid", "VTK XML structured grid"},
+        {".vtr", "RectilinearGrid", "VTK XML rectilinear grid"},
+        {".vti", "ImageData", "VTK XML image data"},
+        {".vtp", "PolyData", "VTK XML polydata"},
+    };
+    const Kind* kind = nullptr;
+    for (const Kind& k : kKinds) {
+        if (ext == k.ext) kind = &k;
+    }
+    const std::string where = path.string();
+    if (kind == nullptr) fail(ErrorCode::kUnsupported, "not a VTK XML extension: " + ext, where);
+    check_vtk_xml(path, kind->type, ext);
+    if (ext == ".pvtu") {
+        // VTK reads the pieces with its own sub-readers: check them the same way first.
+        const std::string text = read_all(path);
+        for (std::size_t pos = text.find("<Piece"); pos != std::string::npos;
+             pos = text.find("<Piece", pos + 1)) {
+            const std::string source = xml_attribute(text, pos, "Source");
+            if (source.empty()) continue;
+            const fs::path piece =
+                fs::path(source).is_absolute() ? fs::path(source) : path.parent_path() / source;
+            std::error_code ec;
+            if (!fs::exists(piece, ec)) {
+                fail(ErrorCode::kNotFound,
+                     "piece '" + source + "' listed in the .pvtu does not exist", where);
+            }
+            check_vtk_xml(piece, "UnstructuredGrid", ".vtu");
+        }
+    }
+
+    vtkSmartPointer<vtkXMLReader> reader;
+    if (ext == ".vtu") reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+    if (ext == ".pvtu") reader = vtkSmartPointer<vtkXMLPUnstructuredGridReader>::New();
+    if (ext == ".vts") reader = vtkSmartPointer<vtkXMLStructuredGridReader>::New();
+    if (ext == ".vtr") reader = vtkSmartPointer<vtkXMLRectilinearGridReader>::New();
+    if (ext == ".vti") reader = vtkSmartPointer<vtkXMLImageDataReader>::New();
+    if (ext == ".vtp") reader = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    reader->SetFileName(path.c_str());
+    vtk_call(reader, progress, where, std::string("cannot read ") + kind->format,
+             [&] { reader->Update(); });
+    UnstructuredMesh mesh = convert_data_object(reader->GetOutputDataObject(0), where);
+    mesh.format = kind->format;
+    if (ext == ".vtp") mesh.format = "VTK XML polydata (point cloud)";
+    return mesh;
+}
+
+UnstructuredMesh read_vtk_legacy(const fs::path& path, const ProgressRange& progress) {
+    const std::string where = path.string();
+    check_vtk_legacy(path, "");
+    vtkNew<vtkDataSetReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->ReadAllScalarsOn();
+    reader->ReadAllVectorsOn();
+    reader->ReadAllNormalsOn();
+    reader->ReadAllTensorsOn();
+    reader->ReadAllColorScalarsOn();
+    reader->ReadAllTCoordsOn();
+    reader->ReadAllFieldsOn();
+    vtk_call(reader, progress, where, "cannot read legacy VTK file", [&] { reader->Update(); });
+    vtkDataObject* output = reader->GetOutputDataObject(0);
+    UnstructuredMesh mesh = convert_data_object(output, where);
+    std::string kind = "data set";
+    if (vtkUnstructuredGrid::SafeDownCast(output)) kind = "unstructured grid";
+    if (vtkStructuredGrid::SafeDownCast(output)) kind = "structured grid";
+    if (vtkRectilinearGrid::SafeDownCast(output)) kind = "rectilinear grid";
+    if (vtkImageData::SafeDownCast(output)) kind = "structured points";
+    if (vtkPolyData::SafeDownCast(output)) kind = "polydata (point cloud)";
+    mesh.format = "VTK legacy " + kind;
+    return mesh;
+}
+
+namespace {
+
+void triangulate_face_cells(vtkUnstructuredGrid* grid, SurfaceMesh& surface,
+                            const std::string& where) {
+    surface.points = convert_points(grid->GetPoints());
+    const vtkIdType n = grid->GetNumberOfCells();
+    vtkNew<vtkIdList> ids;
+    std::vector<std::int64_t> corners;
+    for (vtkIdType c = 0; c < n; ++c) {
+        grid->GetCellPoints(c, ids);
+        int num_corners = 0;
+        switch (grid->GetCellType(c)) {
+            case VTK_TRIANGLE:
+            case VTK_QUADRATIC_TRIANGLE:
+            case VTK_BIQUADRATIC_TRIANGLE:
+                num_corners = 3;
+                break;
+            case VTK_QUAD:
+            case VTK_QUADRATIC_QUAD:
+            case VTK_BIQUADRATIC_QUAD:
+                num_corners = 4;
+                break;
+            case VTK_POLYGON:
+                num_corners = static_cast<int>(ids->GetNumberOfIds());
+                break;
+            default:
+                continue;  // vertices, edges: not surface
+        }
+        if (ids->GetNumberOfIds() < num_corners) continue;
+        corners.assign(ids->GetPointer(0), ids->GetPointer(0) + num_corners);
+        fan_triangulate(corners, surface.triangles, surface.points.size(), where);
+    }
+}
+
+}  // namespace
+
+UnstructuredMesh read_exodus(const fs::path& path, int time_step, const ProgressRange& progress) {
+    const std::string where = path.string();
+    check_exodus_container(path);
+
+    vtkNew<vtkExodusIIReader> reader;
+    reader->SetFileName(path.c_str());
+    vtk_call(reader, progress.sub(0.0, 0.1), where, "cannot read Exodus II",
+             [&] { reader->UpdateInformation(); });
+    std::vector<double> times;
+    vtkInformation* info = reader->GetOutputInformation(0);
+    if (info != nullptr && info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS())) {
+        const int n = info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+        const double* t = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+        times.assign(t, t + n);
+    }
+    const int num_steps = std::max<int>(1, static_cast<int>(times.size()));
+    if (time_step < 0 || time_step >= num_steps) {
+        fail(ErrorCode::kInvalidArgument,
+             "time step " + std::to_string(time_step) + " out of range: the file has " +
+                 std::to_string(times.size()) + " time steps",
+             where);
+    }
+    reader->SetAllArrayStatus(vtkExodusIIReader::ELEM_BLOCK_ELEM_CONN, 1);
+    reader->SetAllArrayStatus(vtkExodusIIReader::SIDE_SET_CONN, 1);
+    reader->SetAllArrayStatus(vtkExodusIIReader::NODAL, 1);
+    reader->SetAllArrayStatus(vtkExodusIIReader::ELEM_BLOCK, 1);
+    reader->SetTimeStep(time_step);
+    vtk_call(reader, progress.sub(0.1, 0.9), where, "cannot read Exodus II", [&] {
+        if (times.empty()) {
+            reader->Update();
+        } else {
+            reader->UpdateTimeStep(times[static_cast<std::size_t>(time_step)]);
+        }
+    });
+    auto* output = vtkMultiBlockDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+    if (output == nullptr) fail(ErrorCode::kParse, "Exodus II reader produced no data", where);
+
+    UnstructuredMesh mesh;
+    for (unsigned int b = 0; b < output->GetNumberOfBlocks(); ++b) {
+        const char* group = output->HasMetaData(b)
+                                ? output->GetMetaData(b)->Get(vtkCompositeDataSet::NAME())
+                                : nullptr;
+        auto* blocks = vtkMultiBlockDataSet::SafeDownCast(output->GetBlock(b));
+        if (group == nullptr || blocks == nullptr) continue;
+        const std::string group_name = group;
+        for (unsigned int i = 0; i < blocks->GetNumberOfBlocks(); ++i) {
+            auto* grid = vtkUnstructuredGrid::SafeDownCast(blocks->GetBlock(i));
+            if (grid == nullptr) continue;
+            const char* name = blocks->HasMetaData(i)
+                                   ? blocks->GetMetaData(i)->Get(vtkCompositeDataSet::NAME())
+                                   : nullptr;
+            if (group_name == "Element Blocks") {
+                append_mesh(mesh, from_unstructured(grid, where));
+            } else if (group_name == "Side Sets") {
+                SurfaceMesh surface;
+                surface.name = name != nullptr ? name : "side set " + std::to_string(i);
+                triangulate_face_cells(grid, surface, where);
+                if (!surface.triangles.empty()) mesh.surfaces.push_back(std::move(surface));
+            }
+        }
+    }
+    mesh.format = "Exodus II";
+    mesh.time_values = times;
+    mesh.time_step = time_step;
+    return mesh;
+}
+
+UnstructuredMesh read_plot3d(const fs::path& path, const ProgressRange& progress) {
+    const std::string where = path.string();
+    check_readable_file(path);
+    // The q file: the same name with the last "xyz" replaced by "q".
+    std::string name = path.filename().string();
+    std::string lower = name;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    const std::size_t at = lower.rfind("xyz");
+    fs::path q_path;
+    if (at != std::string::npos) {
+        q_path = path.parent_path() / (name.substr(0, at) + "q" + name.substr(at + 3));
+    }
+    std::error_code ec;
+    const bool has_q = !q_path.empty() && fs::is_regular_file(q_path, ec);
+    check_plot3d(path, has_q ? q_path : fs::path());
+
+    vtkNew<vtkMultiBlockPLOT3DReader> reader;
+    reader->AutoDetectFormatOn();
+    reader->SetXYZFileName(path.c_str());
+    if (has_q) {
+        reader->SetQFileName(q_path.c_str());
+        reader->AddFunction(200);  // velocity, derived from density and momentum
+    }
+    vtk_call(reader, progress, where, "cannot read PLOT3D", [&] { reader->Update(); });
+    UnstructuredMesh mesh = convert_data_object(reader->GetOutputDataObject(0), where);
+    mesh.format = has_q ? "PLOT3D (xyz + q)" : "PLOT3D (xyz only)";
+    return mesh;
+}
+
+std::vector<PvdEntry> parse_pvd(const fs::path& path) {
+    const std::string where = path.string();
+    check_readable_file(path);
+    const std::string head = read_head(path, 4096);
+    const std::size_t root = head.find("<VTKFile");
+    if (root == std::string::npos) fail(ErrorCode::kParse, "not a .pvd file: no <VTKFile>", where);
+    if (xml_attribute(head, root, "type") != "Collection") {
+        fail(ErrorCode::kParse, "not a .pvd file: <VTKFile> type is not \"Collection\"", where);
+    }
+    VtkErrorCapture capture;
+    vtkSmartPointer<vtkXMLDataElement> element;
+    element.TakeReference(vtkXMLUtilities::ReadElementFromFile(path.c_str()));
+    if (element == nullptr || capture.has_error()) {
+        fail(ErrorCode::kParse, "malformed .pvd XML: " + capture.first_error(), where);
+    }
+    vtkXMLDataElement* collection = element->FindNestedElementWithName("Collection");
+    if (collection == nullptr) fail(ErrorCode::kParse, "no <Collection> in the .pvd file", where);
+    std::vector<PvdEntry> entries;
+    for (int i = 0; i < collection->GetNumberOfNestedElements(); ++i) {
+        vtkXMLDataElement* e = collection->GetNestedElement(i);
+        if (e == nullptr || e->GetName() == nullptr || std::strcmp(e->GetName(), "DataSet") != 0) {
+            continue;
+        }
+        const char* file = e->GetAttribute("file");
+        if (file == nullptr || *file == '\0') {
+            fail(ErrorCode::kParse,
+                 "<DataSet> number " + std::to_string(i) + " has no file attribute", where);
+        }
+        PvdEntry entry;
+        double t = 0.0;
+        if (e->GetAttribute("timestep") != nullptr && !e->GetScalarAttribute("timestep", t)) {
+            fail(ErrorCode::kParse,
+                 std::string("bad timestep \"") + e->GetAttribute("timestep") + "\"", where);
+        }
+        entry.time = t;
+        int part = 0;
+        if (e->GetAttribute("part") != nullptr) e->GetScalarAttribute("part", part);
+        entry.part = part;
+        const fs::path file_path(file);
+        entry.file = file_path.is_absolute() ? file_path : path.parent_path() / file_path;
+        entries.push_back(std::move(entry));
+    }
+    if (entries.empty()) fail(ErrorCode::kParse, "the .pvd collection lists no data sets", where);
+    return entries;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Surfaces.
+
+namespace {
+
+SurfaceMesh surface_from_polydata(vtkPolyData* poly, const std::string& where) {
+    SurfaceMesh surface;
+    surface.points = convert_points(poly->GetPoints());
+    std::vector<std::int64_t> corners;
+    if (vtkCellArray* polys = poly->GetPolys()) {
+        vtkNew<vtkIdList> ids;
+        for (polys->InitTraversal(); polys->GetNextCell(ids);) {
+            corners.assign(ids->GetPointer(0), ids->GetPointer(0) + ids->GetNumberOfIds());
+            fan_triangulate(corners, surface.triangles, surface.points.size(), where);
+        }
+    }
+    if (vtkCellArray* strips = poly->GetStrips()) {
+        vtkNew<vtkIdList> ids;
+        for (strips->InitTraversal(); strips->GetNextCell(ids);) {
+            for (vtkIdType k = 2; k < ids->GetNumberOfIds(); ++k) {
+                std::vector<std::int64_t> tri = {ids->GetId(k - 2), ids->GetId(k - 1),
+                                                 ids->GetId(k)};
+                if (k % 2 == 1) std::swap(tri[0], tri[1]);
+                fan_triangulate(tri, surface.triangles, surface.points.size(), where);
+            }
+        }
+    }
+    return surface;
+}
+
+void check_stl(const fs::path& path, std::uintmax_t size) {
+    const std::string head = read_head(path, 84);
+    if (head.size() == 84) {
+        std::uint32_t n = 0;
+        std::memcpy(&n, head.data() + 80, 4);
+        if (84 + 50 * static_cast<std::uintmax_t>(n) == size) return;  // binary
+    }
+    std::size_t p = 0;
+    while (p < head.size() && std::isspace(static_cast<unsigned char>(head[p]))) ++p;
+    if (head.compare(p, 5, "solid") == 0) {
+        // ASCII: must also be text.
+        if (read_head(path, 1 << 16).find('\0') == std::string::npos) return;
+    }
+    fail(ErrorCode::kParse,
+         "not an STL file: neither ASCII ('solid ...') nor binary (84 + 50 n bytes for n "
+         "triangles)",
+         path.string());
+}
+
+}  // namespace
+
+SurfaceMesh read_vtk_surface(const fs::path& path, const std::string& ext) {
+    const std::string where = path.string();
+    const std::uintmax_t size = check_readable_file(path);
+    vtkSmartPointer<vtkAlgorithm> reader;
+    std::string what;
+    if (ext == ".stl") {
+        check_stl(path, size);
+        auto r = vtkSmartPointer<vtkSTLReader>::New();
+        r->SetFileName(path.c_str());
+        reader = r;
+        what = "STL";
+    } else if (ext == ".ply") {
+        check_ply(path);
+        auto r = vtkSmartPointer<vtkPLYReader>::New();
+        r->SetFileName(path.c_str());
+        reader = r;
+        what = "PLY";
+    } else if (ext == ".obj") {
+        if (read_head(path, 1 << 16).find('\0') != std::string::npos) {
+            fail(ErrorCode::kParse, "not an OBJ file: binary data in a text format", where);
+        }
+        auto r = vtkSmartPointer<vtkOBJReader>::New();
+        r->SetFileName(path.c_str());
+        reader = r;
+        what = "OBJ";
+    } else if (ext == ".vtp") {
+        check_vtk_xml(path, "PolyData", ext);
+        auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+        r->SetFileName(path.c_str());
+        what = "VTK XML polydata";
+        vtk_call(r, ProgressRange{}, where, "cannot read " + what, [&] { r->Update(); });
+        return surface_from_polydata(r->GetOutput(), where);
+    } else if (ext == ".vtk") {
+        check_vtk_legacy(path, "POLYDATA");
+        auto r = vtkSmartPointer<vtkPolyDataReader>::New();
+        r->SetFileName(path.c_str());
+        reader = r;
+        what = "legacy VTK polydata";
+    } else {
+        fail(ErrorCode::kUnsupported, "not a VTK surface extension: " + ext, where);
+    }
+    vtk_call(reader, ProgressRange{}, where, "cannot read " + what, [&] { reader->Update(); });
+    vtkPolyData* poly = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
+    if (poly == nullptr) fail(ErrorCode::kParse, "cannot read " + what + ": no output", where);
+    return surface_from_polydata(poly, where);
+}
+
+}  // namespace tr::io_detail

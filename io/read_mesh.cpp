@@ -1,0 +1,165 @@
+#include <io/detail/common.h>
+#include <io/detail/readers.h>
+#include <io/read_mesh.h>
+
+#include <algorithm>
+#include <map>
+#include <new>
+
+namespace tr {
+
+namespace {
+
+using namespace io_detail;
+
+enum class Format { kVtkXml, kVtkLegacy, kExodus, kPvd, kTetgen, kCsv, kPlot3d, kMfem, kUnknown };
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+Format format_of(const fs::path& path, const std::string& ext) {
+    std::string name = path.filename().string();
+    std::transform(name.begin(), name.end(), name.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if (ends_with(name, "xyz.bin") || ext == ".xyz") return Format::kPlot3d;
+    if (ext == ".vtu" || ext == ".pvtu" || ext == ".vts" || ext == ".vtr" || ext == ".vti" ||
+        ext == ".vtp") {
+        return Format::kVtkXml;
+    }
+    if (ext == ".vtk") return Format::kVtkLegacy;
+    if (ext == ".exo" || ext == ".e" || ext == ".ex2" || ext == ".g" || ext == ".exii") {
+        return Format::kExodus;
+    }
+    if (ext == ".pvd") return Format::kPvd;
+    if (ext == ".node" || ext == ".ele") return Format::kTetgen;
+    if (ext == ".csv") return Format::kCsv;
+    if (ext == ".mesh") return Format::kMfem;
+    return Format::kUnknown;
+}
+
+std::string extension_list() {
+    std::string list;
+    for (const std::string& e : supported_mesh_extensions()) list += (list.empty() ? "" : " ") + e;
+    return list;
+}
+
+void check_single_step(int time_step, const fs::path& path) {
+    if (time_step != 0) {
+        fail(ErrorCode::kInvalidArgument,
+             "time step " + std::to_string(time_step) +
+                 " out of range: the file is not a time series (it has one step, 0)",
+             path.string());
+    }
+}
+
+UnstructuredMesh read_any(const fs::path& path, int time_step, const ProgressRange& progress,
+                          bool allow_pvd);
+
+UnstructuredMesh read_pvd_series(const fs::path& path, int time_step,
+                                 const ProgressRange& progress) {
+    const std::vector<PvdEntry> entries = parse_pvd(path);
+    std::vector<double> times;
+    for (const PvdEntry& e : entries) times.push_back(e.time);
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    if (time_step < 0 || static_cast<std::size_t>(time_step) >= times.size()) {
+        fail(ErrorCode::kInvalidArgument,
+             "time step " + std::to_string(time_step) + " out of range: the collection has " +
+                 std::to_string(times.size()) + " time steps",
+             path.string());
+    }
+    const double t = times[static_cast<std::size_t>(time_step)];
+    std::vector<PvdEntry> parts;
+    for (const PvdEntry& e : entries) {
+        if (e.time == t) parts.push_back(e);
+    }
+    std::stable_sort(parts.begin(), parts.end(),
+                     [](const PvdEntry& a, const PvdEntry& b) { return a.part < b.part; });
+    UnstructuredMesh mesh;
+    std::string inner_format;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        std::error_code ec;
+        if (!fs::exists(parts[k].file, ec)) {
+            fail(ErrorCode::kNotFound,
+                 "data set file '" + parts[k].file.string() + "' listed in the .pvd does not exist",
+                 path.string());
+        }
+        const double lo = static_cast<double>(k) / static_cast<double>(parts.size());
+        const double hi = static_cast<double>(k + 1) / static_cast<double>(parts.size());
+        UnstructuredMesh part = read_any(parts[k].file, 0, progress.sub(lo, hi), false);
+        inner_format = part.format;
+        append_mesh(mesh, std::move(part));
+    }
+    mesh.format = "ParaView collection (.pvd) of " + inner_format;
+    mesh.time_values = times;
+    mesh.time_step = time_step;
+    return mesh;
+}
+
+UnstructuredMesh read_any(const fs::path& path, int time_step, const ProgressRange& progress,
+                          bool allow_pvd) {
+    check_readable_file(path);
+    const std::string ext = lower_extension(path);
+    switch (format_of(path, ext)) {
+        case Format::kVtkXml:
+            check_single_step(time_step, path);
+            return read_vtk_xml(path, ext, progress);
+        case Format::kVtkLegacy:
+            check_single_step(time_step, path);
+            return read_vtk_legacy(path, progress);
+        case Format::kExodus:
+            return read_exodus(path, time_step, progress);
+        case Format::kPvd:
+            if (!allow_pvd) fail(ErrorCode::kUnsupported, "a .pvd inside a .pvd", path.string());
+            return read_pvd_series(path, time_step, progress);
+        case Format::kTetgen:
+            check_single_step(time_step, path);
+            return read_tetgen(path, progress);
+        case Format::kCsv:
+            check_single_step(time_step, path);
+            return read_csv_points(path, progress);
+        case Format::kPlot3d:
+            check_single_step(time_step, path);
+            return read_plot3d(path, progress);
+        case Format::kMfem:
+            check_single_step(time_step, path);
+            return read_mfem(path, progress);
+        case Format::kUnknown:
+            break;
+    }
+    fail(ErrorCode::kUnsupported,
+         "unknown mesh file extension '" + ext + "'; supported: " + extension_list(),
+         path.string());
+}
+
+}  // namespace
+
+std::vector<std::string> supported_mesh_extensions() {
+    return {".vtu", ".pvtu", ".vts", ".vtr",  ".vti", ".vtp", ".vtk", ".exo",    ".e",   ".ex2",
+            ".g",   ".exii", ".pvd", ".node", ".ele", ".csv", ".xyz", "xyz.bin", ".mesh"};
+}
+
+Result<UnstructuredMesh> read_mesh(const std::filesystem::path& path, const ReadOptions& options) {
+    const std::string where = path.string();
+    try {
+        const ProgressRange progress{&options.progress, 0.0, 1.0};
+        progress.report(0.0);
+        UnstructuredMesh mesh = read_any(path, options.time_step, progress, true);
+        validate_mesh(mesh, where);
+        progress.report(1.0);
+        return mesh;
+    } catch (const IoError& e) {
+        return e.error();
+    } catch (const std::bad_alloc&) {
+        return make_error(ErrorCode::kIo, "out of memory while reading", where);
+    } catch (const std::exception& e) {
+        return make_error(ErrorCode::kInternal,
+                          one_line(std::string("unexpected failure: ") + e.what()), where);
+    } catch (...) {
+        return make_error(ErrorCode::kInternal, "unexpected failure (unknown exception)", where);
+    }
+}
+
+}  // namespace tr

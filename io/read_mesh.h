@@ -1,0 +1,51 @@
+#pragma once
+// read_mesh(): loads a volume mesh (or a point cloud) from a file into an UnstructuredMesh.
+
+#include <core/progress.h>
+#include <core/result.h>
+#include <mesh/unstructured_mesh.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tr {
+
+struct ReadOptions {
+    // Which time step to read from a time series (Exodus II, .pvd); 0 is the first. A file that
+    // is not a time series has one step, 0.
+    int time_step = 0;
+    // Called with stage "reading" and fractions from 0 to 1 (at least at 0 and 1).
+    ProgressFn progress;
+};
+
+// Reads a mesh; the format comes from the (case-insensitive) extension:
+//   .vtu .pvtu .vts .vtr .vti .vtp  VTK XML (.vtp: a point cloud, i.e. points without cells)
+//   .vtk                            legacy VTK: unstructured, structured and rectilinear grids,
+//                                   structured points, polydata of vertices (point cloud)
+//   .exo .e .ex2 .g .exii           Exodus II: all element blocks, all nodal and element
+//                                   variables of step `time_step`; side sets as `surfaces`
+//   .pvd                            ParaView collection: `time_step` picks the file
+//   .node .ele                      TetGen (0- or 1-based); .node attributes -> attr0, attr1..
+//   .csv                            point cloud: header of names, columns x, y, z, then fields
+//   *xyz.bin .xyz                   PLOT3D (the q file: the same name with xyz -> q)
+//   .mesh                           MFEM mesh v1.0 (tet, hex, prism, pyramid); "attribute" field
+// Structured grids become hexahedra in VTK order (point id = i + ni * (j + nj * k)); a grid with
+// a dimension of 1 is an error. Unknown VTK cell types keep their raw id. float32 arrays stay
+// float32, float64 stay float64, integer arrays become float64, string arrays are skipped.
+// Exodus blocks and multi-block data are concatenated without merging points; a field present
+// in only some blocks is dropped.
+//
+// Checked here: connectivity indices in range, offsets monotone, finite coordinates (the error
+// names the point), not empty. Not checked: finiteness of field values.
+// Errors: kNotFound (no file), kUnsupported (unknown extension: the message lists the
+// supported ones), kParse (malformed, truncated), kInvalidMesh (bad geometry or indices),
+// kInvalidArgument (time step out of range); `where` is the path or path:line.
+// Cost: O(file size). Thread-safe (VTK messages are captured per thread).
+Result<UnstructuredMesh> read_mesh(const std::filesystem::path& path,
+                                   const ReadOptions& options = {});
+
+// The extensions read_mesh() accepts, with their dot (".vtu", ...; "xyz.bin" for PLOT3D).
+std::vector<std::string> supported_mesh_extensions();
+
+}  // namespace tr

@@ -1,0 +1,52 @@
+#pragma once
+// Private: one call into TetGen for a piecewise linear complex, in std and GLM types. The only
+// code that includes tetgen.h is detail/tetgen_plc.cpp.
+
+#include <core/result.h>
+#include <mesh/tet_mesh.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tr::detail {
+
+// A planar facet: one or more polygons (outer boundary and inner rings, vertex indices into
+// TetgenPlc::points, either winding) and points strictly inside its holes.
+struct TetgenFacet {
+    std::vector<std::vector<std::uint32_t>> polygons;
+    std::vector<Vec3> holes;
+};
+
+struct TetgenPlc {
+    std::vector<Vec3> points;
+    std::vector<std::array<std::uint32_t, 3>> triangles;  // facets that are one triangle
+    std::vector<std::array<std::uint32_t, 4>> quads;      // facets that are one planar quad
+    std::vector<TetgenFacet> facets;                      // general facets
+    std::vector<Vec3> holes;                              // points inside volume holes
+};
+
+struct TetgenResult {
+    std::vector<Vec3> points;  // the input points first, in order, then any Steiner points
+    std::vector<Tet> tets;     // the four corners, orientation as TetGen gives it
+};
+
+// Runs tetrahedralize() with `switches` (TetGen syntax without the dash; 'z' is added so that
+// indices start at 0) in a forked child process, which sends the mesh back through a pipe:
+// Debian's TetGen 1.5.0 frees its memory twice when it fails (terminatetetgen frees it, then
+// the unwinding destroys the tetgenmesh again), which would crash this process. The child's
+// stdout and stderr go to /dev/null (TetGen prints even with -Q). TetGen's failures (the int
+// it throws) become an Error with a sentence for the code; out-of-memory, other exceptions and
+// a crashed child too. POSIX only. Cost: TetGen's, plus a fork (page tables, ~1 ms per GB
+// of this process) and copying the mesh through the pipe (~0.1 s per 10M tets).
+Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switches);
+
+// A positive number as a plain decimal with 12 significant digits ("0.000125"): TetGen's
+// switch parser reads digits and '.', so no exponent.
+std::string tetgen_number(double value);
+
+// A sentence for TetGen's error code (1 = out of memory, 3 = self-intersection, ...).
+std::string tetgen_error_message(int code);
+
+}  // namespace tr::detail
