@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds tetrender and runs the built-in demo.
+# Installs what is missing, builds tetrender and renders the built-in demo (DIR/demo.png,
+# and the demo mesh as DIR/demo.vtu).
 # Usage: scripts/demo.sh [-o DIR]   (outputs go to DIR, default out/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,4 +18,4 @@ ensure_packages
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$(nproc)" --target tetrender
 mkdir -p "$out"
-build/apps/tetrender demo --mesh-out "$out/demo.vtu"
+build/apps/tetrender demo -o "$out/demo.png" --mesh-out "$out/demo.vtu"
