@@ -1,11 +1,13 @@
 #include <apps/cli_common.h>
 #include <core/config.h>
 #include <io/read_mesh.h>
+#include <project/scene.h>
 
 #if TETRENDER_HAS_CGAL
 #include <mesh/copyleft/delaunay.h>
 #endif
 
+#include <cctype>
 #include <cstdio>
 #include <string>
 #include <unistd.h>
@@ -29,6 +31,20 @@ ProgressFn terminal_progress() {
         if (percent >= 100) std::fprintf(stderr, "\r%40s\r", "");
         std::fflush(stderr);
     };
+}
+
+bool parse_image_size(const std::string& text, int& width, int& height) {
+    const auto x = text.find('x');
+    if (x == std::string::npos || x == 0 || x + 1 >= text.size() || x > 5 ||
+        text.size() - x - 1 > 5) {
+        return false;
+    }
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (i != x && !std::isdigit(static_cast<unsigned char>(text[i]))) return false;
+    }
+    width = std::stoi(text.substr(0, x));
+    height = std::stoi(text.substr(x + 1));
+    return width >= 1 && height >= 1 && width <= kMaxImageSide && height <= kMaxImageSide;
 }
 
 double ms_since(std::chrono::steady_clock::time_point start) {

@@ -42,6 +42,9 @@ struct LoadedMesh {
 // Reads `path` and tetrahedralizes it (Delaunay for point clouds, when built with CGAL).
 Result<LoadedMesh> load_tet_mesh(const std::string& path, const LoadOptions& options);
 
+// Parses "WxH" with both sides in [1, kMaxImageSide] (project/scene.h).
+bool parse_image_size(const std::string& text, int& width, int& height);
+
 // Milliseconds since `start`.
 double ms_since(std::chrono::steady_clock::time_point start);
 

@@ -9,6 +9,7 @@
 #include <project/colormap.h>
 #include <project/cpu_renderer.h>
 #include <project/opaque_geometry.h>
+#include <project/reference_raycaster.h>
 #include <project/scene.h>
 
 #include <nlohmann/json.hpp>
@@ -18,7 +19,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
-#include <regex>
+#include <optional>
 
 namespace tr::apps {
 namespace {
@@ -68,17 +69,10 @@ Result<Scene> quick_scene(const RenderArgs& args, const TetMesh& mesh) {
                               "--component must be 'magnitude' or an index");
         }
     }
-    std::smatch m;
-    static const std::regex size_re("([0-9]{1,5})x([0-9]{1,5})");
-    if (!std::regex_match(args.size, m, size_re)) {
-        return make_error(ErrorCode::kInvalidArgument, "--size must be WxH, not " + args.size);
-    }
-    scene.width = std::stoi(m[1]);
-    scene.height = std::stoi(m[2]);
-    if (scene.width < 1 || scene.height < 1 || scene.width > kMaxImageSide ||
-        scene.height > kMaxImageSide) {
-        return make_error(ErrorCode::kInvalidArgument,
-                          "--size sides must be in [1, " + std::to_string(kMaxImageSide) + "]");
+    if (!parse_image_size(args.size, scene.width, scene.height)) {
+        return make_error(ErrorCode::kInvalidArgument, "--size must be WxH with sides in [1, " +
+                                                           std::to_string(kMaxImageSide) +
+                                                           "], not " + args.size);
     }
     TR_TRY(const Vec3 from, view_direction(args.view));
     const Bounds3 bounds = mesh.bounds();
@@ -137,11 +131,13 @@ int run_render(const RenderArgs& args) {
                      args.sort.c_str());
         return kExitUsage;
     }
-    const auto integrator = parse_integrator(args.integrator);
+    const bool reference = args.integrator == "reference";
+    const auto integrator =
+        reference ? std::optional(Integrator::kExact) : parse_integrator(args.integrator);
     if (!integrator) {
         std::fprintf(stderr,
                      "tetrender: unknown --integrator '%s' (exact, preintegrated, "
-                     "exp-texture)\n",
+                     "exp-texture, reference)\n",
                      args.integrator.c_str());
         return kExitUsage;
     }
@@ -185,6 +181,30 @@ int run_render(const RenderArgs& args) {
         }
     }
     const std::size_t cells = loaded->tets.num_real_tets();
+    if (reference) {
+        // The brute-force reference ray caster: no sort, no opaque geometry.
+        if (!scene.opaque.empty()) {
+            return report_error(make_error(ErrorCode::kUnsupported,
+                                           "--integrator reference draws no opaque geometry",
+                                           args.input));
+        }
+        const auto start = std::chrono::steady_clock::now();
+        const Image image = render_reference(loaded->tets, *scalar, scene.transfer_function,
+                                             CameraFrame(scene.camera, scene.width, scene.height),
+                                             scene.background);
+        const double raster_ms = ms_since(start);
+        const Status written = write_image(image, args.output);
+        if (!written.ok()) return report_error(written.error());
+        if (args.stats) {
+            nlohmann::json j = {{"load_ms", loaded->read_ms},
+                                {"tetrahedralize_ms", loaded->tetrahedralize_ms},
+                                {"raster_ms", raster_ms},
+                                {"cells", cells},
+                                {"integrator", "reference"}};
+            std::printf("%s\n", j.dump().c_str());
+        }
+        return kExitOk;
+    }
     auto setup = prepare_sort(std::move(loaded->tets), *method);
     if (!setup.ok()) return report_error(with_where(setup.error(), mesh_name));
     if (!setup->note.empty()) std::fprintf(stderr, "tetrender: note: %s\n", setup->note.c_str());
@@ -259,7 +279,8 @@ std::function<int()> add_render_command(CLI::App& app) {
         ->required();
     cmd->add_option("--sort", args->sort, "auto (default), mpvo, mpvonc, exact, centroid");
     cmd->add_option("--integrator", args->integrator,
-                    "preintegrated (default), exact, exp-texture");
+                    "preintegrated (default), exact, exp-texture, or reference (the slow "
+                    "brute-force ray caster the others are tested against)");
     cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
     cmd->add_flag("--stats", args->stats,

@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <regex>
 
 namespace tr::apps {
 namespace {
@@ -32,18 +31,9 @@ struct SortCheckArgs {
     LoadOptions load;
 };
 
-bool parse_size(const std::string& text, int& w, int& h) {
-    std::smatch m;
-    static const std::regex re("([0-9]{1,5})x([0-9]{1,5})");
-    if (!std::regex_match(text, m, re)) return false;
-    w = std::stoi(m[1]);
-    h = std::stoi(m[2]);
-    return w >= 1 && h >= 1 && w <= kMaxImageSide && h <= kMaxImageSide;
-}
-
 int run_sort_check(const SortCheckArgs& args) {
     int width = 0, height = 0;
-    if (!parse_size(args.size, width, height)) {
+    if (!parse_image_size(args.size, width, height)) {
         std::fprintf(stderr, "tetrender: --size must be WxH with sides in [1, %d], not '%s'\n",
                      kMaxImageSide, args.size.c_str());
         return kExitUsage;

@@ -7,7 +7,7 @@
 
 namespace tr::bench {
 
-UnstructuredMesh hex_grid(int n) {
+UnstructuredMesh hex_grid(int n, bool hole) {
     UnstructuredMesh m;
     const int p = n + 1;
     m.points.reserve(static_cast<std::size_t>(p) * p * p);
@@ -20,6 +20,7 @@ UnstructuredMesh hex_grid(int n) {
     for (int k = 0; k < n; ++k) {
         for (int j = 0; j < n; ++j) {
             for (int i = 0; i < n; ++i) {
+                if (hole && i >= n / 3 && i < 2 * n / 3 && j >= n / 3 && j < 2 * n / 3) continue;
                 const std::int64_t v[8] = {id(i, j, k),
                                            id(i + 1, j, k),
                                            id(i + 1, j + 1, k),
@@ -37,11 +38,11 @@ UnstructuredMesh hex_grid(int n) {
     return m;
 }
 
-const TetMesh& tet_grid(int n) {
-    static std::map<int, std::unique_ptr<TetMesh>> cache;
-    auto& slot = cache[n];
+const TetMesh& tet_grid(int n, bool hole) {
+    static std::map<std::pair<int, bool>, std::unique_ptr<TetMesh>> cache;
+    auto& slot = cache[{n, hole}];
     if (!slot) {
-        auto mesh = tetrahedralize(hex_grid(n));
+        auto mesh = tetrahedralize(hex_grid(n, hole));
         slot = std::make_unique<TetMesh>(std::move(mesh).value());
         std::vector<float> scalar(slot->num_points());
         for (std::size_t i = 0; i < scalar.size(); ++i) scalar[i] = static_cast<float>(i % 97);

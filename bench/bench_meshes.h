@@ -8,10 +8,13 @@
 namespace tr::bench {
 
 // An n^3 grid of unit hexahedra, slightly perturbed (not axis-aligned faces everywhere).
-UnstructuredMesh hex_grid(int n);
+// With `hole`, the middle third of the columns in x and y is left out: a block with a square
+// hole through it (non-convex).
+UnstructuredMesh hex_grid(int n, bool hole = false);
 
-// hex_grid(n) split into 6 n^3 tets, with a float point scalar "scalar". Built once per n.
-const TetMesh& tet_grid(int n);
+// hex_grid(n, hole) split into tets, with a float point scalar "scalar". Built once per
+// (n, hole).
+const TetMesh& tet_grid(int n, bool hole = false);
 
 // The n for about `tets` tets: round(cbrt(tets / 6)).
 int grid_size_for(double tets);

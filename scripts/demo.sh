@@ -9,7 +9,7 @@ out=out
 while [ $# -gt 0 ]; do
   case "$1" in
     -o) out="$2"; shift ;;
-    -h|--help) sed -n '2,3p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,4p' "$0"; exit 0 ;;
     *) echo "demo.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
   esac
   shift

@@ -160,8 +160,7 @@ TEST(Convexify, CylinderDemo) {
     auto demo = make_cylinder_demo({.target_tets = 5000});
     ASSERT_TRUE(demo.ok()) << demo.error().to_string();
     const std::size_t num_virtual = expect_convexified(*demo);
-    std::printf("convexify: demo of %zu tets -> %zu virtual tets\n", demo->num_tets(),
-                num_virtual);
+    std::printf("convexify: demo of %zu tets -> %zu virtual tets\n", demo->num_tets(), num_virtual);
 }
 
 TEST(Convexify, ConvexMeshIsLeftAlone) {
@@ -176,6 +175,32 @@ TEST(Convexify, ConvexMeshIsLeftAlone) {
     EXPECT_EQ(report->num_virtual_tets, 0u);
     EXPECT_EQ(report->num_components, 1u);
     EXPECT_EQ(mesh.num_virtual_tets(), 0u);
+}
+
+TEST(Convexify, IntersectingBoundaryIsAnErrorAndLeavesTheMeshAlone) {
+    // Two blocks that overlap without sharing faces: their boundaries cross.
+    MixedGridOptions o;
+    o.nx = o.ny = o.nz = 2;
+    const TetMesh a = grid_mesh(o);
+    o.offset = Vec3(1.1, 0.7, 0.3);
+    o.seed = 2;
+    const TetMesh b = grid_mesh(o);
+    std::vector<Vec3> points = a.points();
+    points.insert(points.end(), b.points().begin(), b.points().end());
+    std::vector<Tet> tets = a.tets();
+    for (Tet tet : b.tets()) {
+        for (PointId& p : tet) p += static_cast<PointId>(a.num_points());
+        tets.push_back(tet);
+    }
+    auto mesh = TetMesh::create(points, tets);
+    ASSERT_TRUE(mesh.ok());
+    auto adjacency = build_face_adjacency(*mesh);
+    ASSERT_TRUE(adjacency.ok());
+    auto report = convexify(*mesh, *adjacency);
+    ASSERT_FALSE(report.ok());
+    std::printf("convexify of crossing boundaries: %s\n", report.error().to_string().c_str());
+    EXPECT_EQ(mesh->num_virtual_tets(), 0u);
+    EXPECT_EQ(mesh->num_points(), points.size());
 }
 
 TEST(Convexify, BadCallsAreErrorsAndLeaveTheMeshAlone) {

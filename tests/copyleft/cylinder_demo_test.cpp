@@ -66,7 +66,8 @@ TEST(CylinderDemo, SizeVolumeFieldsAndShape) {
 // The swirl of the demo written out independently: Lamb-Oseen about x, core 0.6, circulation 2.
 Vec3 swirl(const Vec3& p) {
     const double rho2 = p.y * p.y + p.z * p.z;
-    const double u_phi = 2.0 / (2 * std::numbers::pi * std::sqrt(rho2)) * (1 - std::exp(-rho2 / 0.36));
+    const double u_phi =
+        2.0 / (2 * std::numbers::pi * std::sqrt(rho2)) * (1 - std::exp(-rho2 / 0.36));
     return Vec3(0.0, -p.z, p.y) / std::sqrt(rho2) * u_phi;
 }
 
@@ -129,8 +130,8 @@ TEST(CylinderDemo, VorticityIsTheCurlOfVelocity) {
 }
 
 TEST(CylinderDemo, OtherRadiusAndSides) {
-    const CylinderDemoOptions options{.target_tets = 10000, .cylinder_radius = 1.2,
-                                      .cylinder_sides = 24};
+    const CylinderDemoOptions options{
+        .target_tets = 10000, .cylinder_radius = 1.2, .cylinder_sides = 24};
     EXPECT_EQ(cylinder_demo_sides(options), 24);
     auto mesh = make_cylinder_demo(options);
     ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
@@ -150,12 +151,10 @@ TEST(CylinderDemo, IsDeterministic) {
 
 TEST(CylinderDemo, BadOptionsAreErrors) {
     EXPECT_EQ(make_cylinder_demo({.target_tets = 10}).error().code, ErrorCode::kInvalidArgument);
-    EXPECT_EQ(make_cylinder_demo({.cylinder_radius = 0}).error().code,
-              ErrorCode::kInvalidArgument);
+    EXPECT_EQ(make_cylinder_demo({.cylinder_radius = 0}).error().code, ErrorCode::kInvalidArgument);
     EXPECT_EQ(make_cylinder_demo({.cylinder_radius = 1.9}).error().code,
               ErrorCode::kInvalidArgument);
-    EXPECT_EQ(make_cylinder_demo({.cylinder_sides = 5}).error().code,
-              ErrorCode::kInvalidArgument);
+    EXPECT_EQ(make_cylinder_demo({.cylinder_sides = 5}).error().code, ErrorCode::kInvalidArgument);
 }
 
 }  // namespace

@@ -23,7 +23,8 @@ UnstructuredMesh cube_cloud(std::uint32_t seed, std::size_t num_interior, double
     }
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(lo, hi);
-    for (std::size_t i = 0; i < num_interior; ++i) cloud.points.emplace_back(u(rng), u(rng), u(rng));
+    for (std::size_t i = 0; i < num_interior; ++i)
+        cloud.points.emplace_back(u(rng), u(rng), u(rng));
     return cloud;
 }
 
@@ -135,8 +136,7 @@ void expect_invalid(const UnstructuredMesh& cloud, const std::string& needle) {
     auto mesh = delaunay_tetrahedralize(cloud);
     ASSERT_FALSE(mesh.ok());
     EXPECT_EQ(mesh.error().code, ErrorCode::kInvalidMesh);
-    EXPECT_NE(mesh.error().to_string().find(needle), std::string::npos)
-        << mesh.error().to_string();
+    EXPECT_NE(mesh.error().to_string().find(needle), std::string::npos) << mesh.error().to_string();
     EXPECT_EQ(mesh.error().to_string().find('\n'), std::string::npos);
 }
 

@@ -1,4 +1,5 @@
 // TetGen surface meshing: closed surfaces give the enclosed volume; bad surfaces give errors.
+#include <mesh/copyleft/detail/tetgen_plc.h>
 #include <mesh/copyleft/tetgen_mesher.h>
 #include <mesh/face_adjacency.h>
 
@@ -6,7 +7,10 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace tr {
 namespace {
@@ -98,8 +102,7 @@ void expect_error(const SurfaceMesh& surface, const TetgenOptions& options, Erro
     auto mesh = tetgen_mesh_surface(surface, options);
     ASSERT_FALSE(mesh.ok());
     EXPECT_EQ(mesh.error().code, code) << mesh.error().to_string();
-    EXPECT_NE(mesh.error().to_string().find(needle), std::string::npos)
-        << mesh.error().to_string();
+    EXPECT_NE(mesh.error().to_string().find(needle), std::string::npos) << mesh.error().to_string();
     EXPECT_EQ(mesh.error().to_string().find('\n'), std::string::npos);
 }
 
@@ -141,6 +144,36 @@ TEST(TetgenMesher, BadOptionsAreErrors) {
     options = {};
     options.max_volume = -1;
     expect_error(unit_cube(), options, ErrorCode::kInvalidArgument, "max_volume");
+}
+
+TEST(TetgenMesher, NumbersForSwitchesArePlainDecimals) {
+    EXPECT_EQ(detail::tetgen_number(2.0), "2");
+    EXPECT_EQ(detail::tetgen_number(1.414), "1.414");
+    EXPECT_EQ(detail::tetgen_number(0.000125), "0.000125");
+    EXPECT_EQ(detail::tetgen_number(123456.0), "123456");
+    for (double v : {1e-20, 3.3e-7, 0.0625, 7.77e5, 1e30}) {
+        SCOPED_TRACE(v);
+        const std::string text = detail::tetgen_number(v);
+        EXPECT_EQ(text.find_first_not_of("0123456789."), std::string::npos) << text;
+        EXPECT_NEAR(std::strtod(text.c_str(), nullptr), v, 1e-11 * v);
+    }
+}
+
+TEST(TetgenMesher, ConcurrentCallsAndFailuresDoNotInterfere) {
+    std::vector<std::thread> threads;
+    std::vector<int> ok(8, 0);
+    for (int i = 0; i < 8; ++i) {
+        threads.emplace_back([i, &ok] {
+            SurfaceMesh surface = unit_cube();
+            if (i % 2) add_box(surface, Vec3(0.5, 0.3, 0.4), Vec3(1.5, 1.3, 1.4));
+            TetgenOptions options;
+            options.max_volume = 0.001;
+            auto mesh = tetgen_mesh_surface(surface, options);
+            ok[i] = mesh.ok() && std::abs(mesh->real_volume() - 1.0) < 1e-9 ? 1 : 0;
+        });
+    }
+    for (std::thread& t : threads) t.join();
+    for (int i = 0; i < 8; ++i) EXPECT_EQ(ok[i], i % 2 ? 0 : 1) << i;
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #endif
 #if TETRENDER_HAS_TETGEN
 #include <mesh/copyleft/convexify.h>
+#include <mesh/copyleft/cylinder_demo.h>
 #endif
 
 #include <gtest/gtest.h>
@@ -117,6 +118,23 @@ TEST(SortConvexified, NonConvexMeshesBecomeExact) {
         EXPECT_EQ(with.violations, 0u);
         EXPECT_EQ(inside.violations, 0u);
     }
+}
+
+TEST(SortConvexified, TheDemoCylinderHole) {
+    CylinderDemoOptions options;
+    options.target_tets = 15000;
+    auto demo = make_cylinder_demo(options);
+    ASSERT_TRUE(demo.ok()) << demo.error().to_string();
+    const Tally without = check_views(*demo, SortMethod::kMpvo, 6, 21);
+    const Tally centroid = check_views(*demo, SortMethod::kCentroid, 6, 21);
+    const TetMesh filled = convexified(*demo);
+    const Tally with = check_views(filled, SortMethod::kMpvo, 6, 21);
+    std::printf(
+        "[ demo %zu tets ] pairs %zu: mpvo %zu violations bare, %zu convexified; "
+        "centroid %zu\n",
+        demo->num_tets(), with.pairs, without.violations, with.violations, centroid.violations);
+    EXPECT_GT(with.pairs, 1000u);
+    EXPECT_EQ(with.violations, 0u);
 }
 #endif
 
