@@ -53,6 +53,29 @@ ScreenBox screen_box(const TetMesh& mesh, CellId t, const CameraFrame& camera) {
     return box;
 }
 
+// --- Shirley-Tuchman projection (the exp-texture integrator, as in the paper's section 3.2) ---
+
+// Attributes at a vertex of the projected tet's triangles: screen position, thickness (u), the
+// scalar at the front and back of the ray segment, and the ray parameter of the front.
+struct StVertex {
+    double x, y;
+    double thickness, s_front, s_back, t_front;
+};
+
+// Edge function of the directed screen edge a -> b at p, computed from the lexicographically
+// smaller endpoint so that an edge shared by two triangles gives exactly opposite values.
+double edge_function(const StVertex& a, const StVertex& b, double px, double py) {
+    const bool swap = b.x < a.x || (b.x == a.x && b.y < a.y);
+    const StVertex& p = swap ? b : a;
+    const StVertex& q = swap ? a : b;
+    const double e = (q.x - p.x) * (py - p.y) - (q.y - p.y) * (px - p.x);
+    return swap ? -e : e;
+}
+
+double cross2(double ax, double ay, double bx, double by, double cx, double cy) {
+    return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+}
+
 }  // namespace
 
 double longest_edge(const TetMesh& mesh) {
@@ -78,8 +101,18 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
 
     // Screen boxes of the cells, then the cells binned into tiles keeping the order.
     std::vector<ScreenBox> boxes(in.order.size());
-    parallel_for(0, in.order.size(), 4096,
-                 [&](std::size_t i) { boxes[i] = screen_box(mesh, in.order[i], camera); });
+    std::vector<std::uint8_t> straddles(in.order.size(), 0);  // reaches behind the eye
+    parallel_for(0, in.order.size(), 4096, [&](std::size_t i) {
+        boxes[i] = screen_box(mesh, in.order[i], camera);
+        if (!orthographic) {
+            for (PointId p : mesh.tet(in.order[i])) {
+                if (glm::dot(mesh.point(p) - camera.eye(), camera.forward()) <= 0) straddles[i] = 1;
+            }
+        }
+    });
+    // The paper's projection for the exp-texture integrator; the exact per-pixel segments for
+    // the others (and for cells reaching behind the eye, which must be clipped).
+    const bool shirley_tuchman = in.shader->integrator() == Integrator::kExpTexture;
     std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(tiles_x) * tiles_y);
     std::size_t drawn = 0;
     for (std::uint32_t i = 0; i < in.order.size(); ++i) {
@@ -106,6 +139,7 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                 rays[(y - py0) * kTile + (x - px0)] = camera.pixel_ray(x, y);
         }
         std::size_t tile_fragments = 0;
+        std::vector<int> on_edges;  // pixels of the current cell decided by the exact test
         for (std::uint32_t index : bins[tile]) {
             const CellId t = in.order[index];
             ScreenBox b = boxes[index];
@@ -134,6 +168,194 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                 for (int k = 0; k < 4; ++k)
                     eye_num[k] = offsets[k] - glm::dot(normals[k], camera.eye());
                 s_eye = s0 + glm::dot(gradient, camera.eye() - p0);
+            }
+            auto scalar_at = [&](const Ray& ray, double t) {
+                return s0 + glm::dot(gradient, ray.origin + t * ray.direction - p0);
+            };
+            if (shirley_tuchman && !straddles[index]) {
+                // Project, classify (3 or 4 triangles around the thick vertex), rasterize with
+                // thickness and the front and back scalars interpolated across the triangles.
+                StVertex corners[4];
+                for (int k = 0; k < 4; ++k) {
+                    const Vec3& world = mesh.point(v[k]);
+                    const Vec3 q = camera.project(world);
+                    const Ray r = camera.ray(q.x, q.y);
+                    const double t = glm::dot(world - r.origin, r.direction);
+                    corners[k] = {q.x, q.y, 0.0, in.scalar[v[k]], in.scalar[v[k]], t};
+                }
+                // Convex hull of the four projected corners.
+                int hull[4], n = 0;
+                {
+                    int order4[4] = {0, 1, 2, 3};
+                    std::sort(order4, order4 + 4, [&](int a, int c) {
+                        return corners[a].x != corners[c].x ? corners[a].x < corners[c].x
+                                                            : corners[a].y < corners[c].y;
+                    });
+                    int chain[8], m = 0;
+                    for (int i = 0; i < 4; ++i) {
+                        while (m >= 2 && cross2(corners[chain[m - 2]].x, corners[chain[m - 2]].y,
+                                                corners[chain[m - 1]].x, corners[chain[m - 1]].y,
+                                                corners[order4[i]].x, corners[order4[i]].y) <= 0) {
+                            --m;
+                        }
+                        chain[m++] = order4[i];
+                    }
+                    for (int i = 2, lower = m + 1; i >= 0; --i) {
+                        while (m >= lower &&
+                               cross2(corners[chain[m - 2]].x, corners[chain[m - 2]].y,
+                                      corners[chain[m - 1]].x, corners[chain[m - 1]].y,
+                                      corners[order4[i]].x, corners[order4[i]].y) <= 0) {
+                            --m;
+                        }
+                        chain[m++] = order4[i];
+                    }
+                    n = m - 1;
+                    for (int i = 0; i < n && i < 4; ++i) hull[i] = chain[i];
+                }
+                if (n < 3) continue;  // no area on screen
+                // The thick vertex: where the ray meets the cell's longest chord. Class 1
+                // (a corner projects inside the other three): that corner and the opposite
+                // face. Class 2 (a quadrilateral): the two opposite edges whose projections
+                // are its diagonals.
+                double ta = 0, tb = 0, tx = 0, ty = 0;
+                Ray thick_ray;
+                bool ok = true;
+                if (n == 3) {
+                    int inner = 0;
+                    for (int k = 0; k < 4; ++k) {
+                        if (k != hull[0] && k != hull[1] && k != hull[2]) inner = k;
+                    }
+                    tx = corners[inner].x, ty = corners[inner].y;
+                    thick_ray = camera.ray(tx, ty);
+                    ta = glm::dot(mesh.point(v[inner]) - thick_ray.origin, thick_ray.direction);
+                    const double den = glm::dot(normals[inner], thick_ray.direction);
+                    ok = den != 0;
+                    if (ok)
+                        tb = (offsets[inner] - glm::dot(normals[inner], thick_ray.origin)) / den;
+                } else {
+                    const StVertex &a = corners[hull[0]], &c = corners[hull[2]];
+                    const StVertex &b2 = corners[hull[1]], &d = corners[hull[3]];
+                    const double den = (c.x - a.x) * (d.y - b2.y) - (c.y - a.y) * (d.x - b2.x);
+                    ok = den != 0;
+                    if (ok) {
+                        const double u =
+                            ((b2.x - a.x) * (d.y - b2.y) - (b2.y - a.y) * (d.x - b2.x)) / den;
+                        tx = a.x + u * (c.x - a.x), ty = a.y + u * (c.y - a.y);
+                        thick_ray = camera.ray(tx, ty);
+                        // Ray parameter of the closest approach to each 3D edge.
+                        auto on_line = [&](const Vec3& p, const Vec3& q) {
+                            const Vec3 e = q - p, w0 = thick_ray.origin - p;
+                            const double A = glm::dot(thick_ray.direction, thick_ray.direction);
+                            const double B = glm::dot(thick_ray.direction, e);
+                            const double C = glm::dot(e, e);
+                            const double denom = A * C - B * B;
+                            if (denom == 0)
+                                return glm::dot(p - thick_ray.origin, thick_ray.direction);
+                            return (B * glm::dot(e, w0) - C * glm::dot(thick_ray.direction, w0)) /
+                                   denom;
+                        };
+                        ta = on_line(mesh.point(v[hull[0]]), mesh.point(v[hull[2]]));
+                        tb = on_line(mesh.point(v[hull[1]]), mesh.point(v[hull[3]]));
+                    }
+                }
+                if (!ok) continue;
+                const double t_front = std::min(ta, tb), t_back = std::max(ta, tb);
+                const StVertex thick{tx,
+                                     ty,
+                                     t_back - t_front,
+                                     scalar_at(thick_ray, t_front),
+                                     scalar_at(thick_ray, t_back),
+                                     t_front};
+                on_edges.clear();
+                for (int e = 0; e < n; ++e) {
+                    StVertex tri[3] = {thick, corners[hull[e]], corners[hull[(e + 1) % n]]};
+                    double area = edge_function(tri[0], tri[1], tri[2].x, tri[2].y);
+                    if (area == 0) continue;
+                    if (area < 0) {
+                        std::swap(tri[1], tri[2]);
+                        area = -area;
+                    }
+                    const double lo_x = std::min({tri[0].x, tri[1].x, tri[2].x});
+                    const double hi_x = std::max({tri[0].x, tri[1].x, tri[2].x});
+                    const double lo_y = std::min({tri[0].y, tri[1].y, tri[2].y});
+                    const double hi_y = std::max({tri[0].y, tri[1].y, tri[2].y});
+                    const int x0 = std::max(b.x0, static_cast<int>(std::ceil(lo_x - 0.5)));
+                    const int x1 = std::min(b.x1, static_cast<int>(std::floor(hi_x - 0.5)));
+                    const int y0 = std::max(b.y0, static_cast<int>(std::ceil(lo_y - 0.5)));
+                    const int y1 = std::min(b.y1, static_cast<int>(std::floor(hi_y - 0.5)));
+                    for (int y = y0; y <= y1; ++y) {
+                        for (int x = x0; x <= x1; ++x) {
+                            const double px = x + 0.5, py = y + 0.5;
+                            const double w0 = edge_function(tri[1], tri[2], px, py);
+                            const double w1 = edge_function(tri[2], tri[0], px, py);
+                            const double w2 = edge_function(tri[0], tri[1], px, py);
+                            if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+                            if (w0 == 0 || w1 == 0 || w2 == 0) {
+                                // On an edge of the projection: screen-space T-junctions in
+                                // degenerate views make edge rules disagree between cells,
+                                // so the exact ray test decides (and shades) this pixel, once
+                                // per cell although it lies on two of its triangles.
+                                const int local = (y - py0) * kTile + (x - px0);
+                                if (std::find(on_edges.begin(), on_edges.end(), local) !=
+                                    on_edges.end()) {
+                                    continue;
+                                }
+                                on_edges.push_back(local);
+                                const Ray& ray = rays[local];
+                                double t_in = 0.0;
+                                double t_out = std::numeric_limits<double>::infinity();
+                                bool inside = true;
+                                for (int k = 0; k < 4 && inside; ++k) {
+                                    const double denom = glm::dot(normals[k], ray.direction);
+                                    const double num =
+                                        offsets[k] - glm::dot(normals[k], ray.origin);
+                                    if (denom < 0) {
+                                        t_in = std::max(t_in, num / denom);
+                                    } else if (denom > 0) {
+                                        t_out = std::min(t_out, num / denom);
+                                    } else if (num < 0 || (num == 0 && !owns_plane(normals[k]))) {
+                                        inside = false;
+                                    }
+                                }
+                                const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
+                                if (in.opaque_depth) {
+                                    t_out = std::min(t_out, (*in.opaque_depth)[pixel]);
+                                }
+                                if (!inside || !(t_out > t_in)) continue;
+                                const ShadedSegment seg = in.shader->shade(
+                                    scalar_at(ray, t_in), scalar_at(ray, t_out), t_out - t_in);
+                                Vec3f& dst = image.pixels[pixel];
+                                dst = seg.color + (1.0f - seg.alpha) * dst;
+                                ++tile_fragments;
+                                continue;
+                            }
+                            const double b0 = w0 / area, b1 = w1 / area, b2 = w2 / area;
+                            double u = b0 * tri[0].thickness + b1 * tri[1].thickness +
+                                       b2 * tri[2].thickness;
+                            const double sf =
+                                b0 * tri[0].s_front + b1 * tri[1].s_front + b2 * tri[2].s_front;
+                            double sb =
+                                b0 * tri[0].s_back + b1 * tri[1].s_back + b2 * tri[2].s_back;
+                            const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
+                            if (in.opaque_depth) {
+                                const double tf =
+                                    b0 * tri[0].t_front + b1 * tri[1].t_front + b2 * tri[2].t_front;
+                                const double room = (*in.opaque_depth)[pixel] - tf;
+                                if (!(room > 0)) continue;
+                                if (room < u) {
+                                    sb = sf + (sb - sf) * room / u;
+                                    u = room;
+                                }
+                            }
+                            if (!(u > 0)) continue;
+                            const ShadedSegment seg = in.shader->shade(sf, sb, u);
+                            Vec3f& dst = image.pixels[pixel];
+                            dst = seg.color + (1.0f - seg.alpha) * dst;
+                            ++tile_fragments;
+                        }
+                    }
+                }
+                continue;
             }
             for (int y = b.y0; y <= b.y1; ++y) {
                 for (int x = b.x0; x <= b.x1; ++x) {

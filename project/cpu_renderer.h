@@ -4,6 +4,13 @@
 // fragment per pixel the exact segment of that pixel's ray through the tet (right under
 // perspective), clipped at the eye and at opaque depth, shaded by a SegmentShader.
 //
+// With the exp-texture integrator, cells are drawn as the paper draws them instead: each
+// projected tet split by Shirley and Tuchman's classification into 3 or 4 triangles around the
+// thick vertex (whose thickness and front and back scalars come from the exact chord there),
+// those attributes interpolated linearly across the triangles (exact under orthographic
+// projection, an approximation under perspective), and pixel centres on triangle edges decided
+// by the exact ray test. Cells reaching behind the eye always take the exact path.
+//
 // Pixel rays pass through pixel centres. A centre on a face shared by two tets belongs to
 // exactly one of them (the one whose outward normal is "positive"), so shared edges are
 // neither skipped nor blended twice. Threads work on fixed screen tiles, each compositing its

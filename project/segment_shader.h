@@ -4,7 +4,8 @@
 //
 // - kExpTexture: the paper's section 3.2: opacity 1 - exp(-u v) from a 2D lookup texture
 //   (bilinear), u the thickness, v the mean extinction of the two ends; colour c at the mean
-//   scalar.
+//   scalar. The CPU renderer pairs it with the paper's Shirley-Tuchman projection (thickness
+//   and scalars interpolated across each cell's projected triangles).
 // - kPreintegrated: a pre-integrated table over (front scalar, back scalar, length) (Engel,
 //   Kraus, Ertl 2001), trilinear, so colour and opacity varying inside a cell are integrated.
 // - kExact: the segment's integral computed per fragment: split where the scalar crosses a
