@@ -80,7 +80,8 @@ int run_demo(const DemoArgs& args) {
     camera.view_angle = 38;
     const CameraFrame frame(camera, args.width, args.height);
     const Vec3 background(0.02, 0.02, 0.05);
-    const SurfaceMesh cylinder = make_cylinder_surface(0.999 * options.cylinder_radius, -1, 1, 64);
+    const SurfaceMesh cylinder =
+        make_cylinder_surface(0.999 * options.cylinder_radius, -1, 1, cylinder_demo_sides(options));
     const OpaqueLayer layer =
         render_opaque({{&cylinder, Vec3(0.75, 0.75, 0.8)}}, frame, background);
 

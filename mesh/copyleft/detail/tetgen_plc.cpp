@@ -14,6 +14,7 @@
 #include <exception>
 #include <fcntl.h>
 #include <limits>
+#include <mutex>
 #include <new>
 #include <pthread.h>
 #include <string>
@@ -355,7 +356,10 @@ Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switche
         return make_error(ErrorCode::kInvalidArgument, "input too large for TetGen");
     }
     // TetGen runs in a child process so that its failures cannot take this one down (see
-    // call_tetgen); the child sends the mesh back through a pipe.
+    // call_tetgen); the child sends the mesh back through a pipe. One call at a time: fewer
+    // threads of ours are allocating while another forks (see tetgen_plc.h).
+    static std::mutex one_at_a_time;
+    const std::lock_guard<std::mutex> lock(one_at_a_time);
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) return make_error(ErrorCode::kIo, errno_text("pipe"));
     const pid_t pid = ::fork();

@@ -38,8 +38,12 @@ struct TetgenResult {
 // the unwinding destroys the tetgenmesh again), which would crash this process. The child's
 // stdout and stderr go to /dev/null (TetGen prints even with -Q). TetGen's failures (the int
 // it throws) become an Error with a sentence for the code; out-of-memory, other exceptions and
-// a crashed child too. POSIX only. Cost: TetGen's, plus a fork (page tables, ~1 ms per GB
-// of this process) and copying the mesh through the pipe (~0.1 s per 10M tets).
+// a crashed child too. POSIX only. Calls are serialized (a process-wide mutex).
+// The child allocates after fork(): fine with glibc's malloc, which is fork-safe, but GCC 12's
+// AddressSanitizer allocator is not: under ASan the child can hang when another thread was
+// allocating at the moment of the fork.
+// Cost: TetGen's, plus a fork (page tables, ~1 ms per GB of this process) and copying the mesh
+// through the pipe (~0.1 s per 10M tets).
 Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switches);
 
 // A positive number as a plain decimal with 12 significant digits ("0.000125"): TetGen's
