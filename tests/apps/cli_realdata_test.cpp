@@ -48,16 +48,8 @@ const Dataset kDatasets[] = {
     {"wedge_blocks/mesh_fs8.exo", 1344, 1000, 298.657, "no"},
 };
 
-std::filesystem::path data_dir() { return TETRENDER_SHARED_DATA_DIR; }
-
-bool require_data() {
-    if (std::filesystem::is_directory(data_dir())) return true;
-    const char* ci = std::getenv("CI");
-    if (ci && std::string(ci) == "true") {
-        ADD_FAILURE() << "CI=true but the shared data folder is missing: " << data_dir();
-    }
-    return false;
-}
+std::filesystem::path data_dir() { return testing::shared_data_dir(); }
+bool require_data() { return testing::require_shared_data(); }
 
 class InfoOnRealData : public ::testing::TestWithParam<Dataset> {};
 

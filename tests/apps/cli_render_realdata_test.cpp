@@ -17,16 +17,8 @@
 namespace tr {
 namespace {
 
-std::filesystem::path data_dir() { return TETRENDER_SHARED_DATA_DIR; }
-
-bool require_data() {
-    if (std::filesystem::is_directory(data_dir())) return true;
-    const char* ci = std::getenv("CI");
-    if (ci && std::string(ci) == "true") {
-        ADD_FAILURE() << "CI=true but the shared data folder is missing: " << data_dir();
-    }
-    return false;
-}
+std::filesystem::path data_dir() { return testing::shared_data_dir(); }
+bool require_data() { return testing::require_shared_data(); }
 
 // Reads a PFM written by tetrender (little-endian RGB floats).
 std::vector<float> read_pfm(const std::string& path, int& w, int& h) {

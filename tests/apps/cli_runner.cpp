@@ -1,5 +1,7 @@
 #include <tests/apps/cli_runner.h>
 
+#include <gtest/gtest.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -28,6 +30,17 @@ std::string make_temp_dir() {
                ("tetrender_test_" + std::to_string(rd()) + std::to_string(rd()));
     std::filesystem::create_directories(dir);
     return dir.string();
+}
+
+std::string shared_data_dir() { return TETRENDER_SHARED_DATA_DIR; }
+
+bool require_shared_data() {
+    if (std::filesystem::is_directory(shared_data_dir())) return true;
+    const char* ci = std::getenv("CI");
+    if (ci && std::string(ci) == "true") {
+        ADD_FAILURE() << "CI=true but the shared data folder is missing: " << shared_data_dir();
+    }
+    return false;
 }
 
 CliRun run_cli(const std::string& args) {

@@ -20,4 +20,11 @@ std::string shell_quote(const std::string& s);
 // A fresh empty directory under the system temp dir.
 std::string make_temp_dir();
 
+// ../shared/data beside the source tree.
+std::string shared_data_dir();
+
+// Whether the shared data is there. When it is not: false, and with CI=true also a test
+// failure (realdata tests must run in CI); callers then GTEST_SKIP().
+bool require_shared_data();
+
 }  // namespace tr::testing
