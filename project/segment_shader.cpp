@@ -40,6 +40,8 @@ SegmentShader::SegmentShader(const TransferFunction& tf, Integrator integrator, 
     s_lo_ = tf.s_min();
     s_hi_ = tf.s_max();
     if (!(s_hi_ > s_lo_)) s_hi_ = s_lo_ + 1.0;
+    scalar_scale_ = (kPreScalars - 1) / (s_hi_ - s_lo_);
+    length_scale_ = (kPreLengths - 1) / max_length_;
     for (const auto& p : tf.color_points()) breakpoints_.push_back(p.s);
     for (const auto& p : tf.opacity_points()) breakpoints_.push_back(p.s);
     std::sort(breakpoints_.begin(), breakpoints_.end());
@@ -143,28 +145,26 @@ ShadedSegment SegmentShader::exp_texture(double s_front, double s_back, double l
 ShadedSegment SegmentShader::preintegrated(double s_front, double s_back, double length) const {
     if (!(length > 0)) return {Vec3f(0.0f), 0.0f};
     if (length > max_length_) return exact(s_front, s_back, length);
-    auto coord = [this](double s) {
-        return std::clamp((s - s_lo_) / (s_hi_ - s_lo_), 0.0, 1.0) * (kPreScalars - 1);
-    };
-    const double x = coord(s_front), y = coord(s_back);
-    const double z = length / max_length_ * (kPreLengths - 1);
+    // Trilinear in (front, back, length), in single precision: the table holds floats.
+    const float top = static_cast<float>(kPreScalars - 1);
+    const float x = std::clamp(static_cast<float>((s_front - s_lo_) * scalar_scale_), 0.0f, top);
+    const float y = std::clamp(static_cast<float>((s_back - s_lo_) * scalar_scale_), 0.0f, top);
+    const float z = static_cast<float>(length * length_scale_);
     const int i = std::min(static_cast<int>(x), kPreScalars - 2);
     const int j = std::min(static_cast<int>(y), kPreScalars - 2);
     const int k = std::min(static_cast<int>(z), kPreLengths - 2);
-    const double fx = x - i, fy = y - j, fz = z - k;
-    float out[4] = {0, 0, 0, 0};
-    for (int dx = 0; dx < 2; ++dx) {
-        for (int dy = 0; dy < 2; ++dy) {
-            for (int dz = 0; dz < 2; ++dz) {
-                const double w = (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy) * (dz ? fz : 1 - fz);
-                const float* t =
-                    &preint_table_[(((i + dx) * kPreScalars + (j + dy)) * kPreLengths + (k + dz)) *
-                                   4];
-                for (int c = 0; c < 4; ++c) out[c] += static_cast<float>(w) * t[c];
-            }
-        }
-    }
-    return {Vec3f(out[0], out[1], out[2]), out[3]};
+    const float fx = x - static_cast<float>(i), fy = y - static_cast<float>(j);
+    const float fz = z - static_cast<float>(k);
+    const glm::vec4* t = reinterpret_cast<const glm::vec4*>(preint_table_.data()) +
+                         (static_cast<std::size_t>(i) * kPreScalars + j) * kPreLengths + k;
+    constexpr std::size_t kDy = kPreLengths;
+    constexpr std::size_t kDx = static_cast<std::size_t>(kPreScalars) * kPreLengths;
+    const glm::vec4 c00 = glm::mix(t[0], t[1], fz);
+    const glm::vec4 c01 = glm::mix(t[kDy], t[kDy + 1], fz);
+    const glm::vec4 c10 = glm::mix(t[kDx], t[kDx + 1], fz);
+    const glm::vec4 c11 = glm::mix(t[kDx + kDy], t[kDx + kDy + 1], fz);
+    const glm::vec4 out = glm::mix(glm::mix(c00, c01, fy), glm::mix(c10, c11, fy), fx);
+    return {Vec3f(out), out.w};
 }
 
 }  // namespace tr

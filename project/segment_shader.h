@@ -49,7 +49,8 @@ class SegmentShader {
     const TransferFunction& tf_;
     Integrator integrator_;
     double max_length_;
-    double s_lo_, s_hi_;               // scalar range of the tables (the control points' range)
+    double s_lo_, s_hi_;  // scalar range of the tables (the control points' range)
+    double scalar_scale_ = 1, length_scale_ = 1;  // table steps per unit scalar and length
     double kappa_max_;                 // largest extinction, for the exp texture's v axis
     std::vector<float> exp_table_;     // kExpTexture: kExpSize x kExpSize, 1 - exp(-u v)
     std::vector<float> preint_table_;  // kPreintegrated: (s_f, s_b, l) -> r, g, b, a
