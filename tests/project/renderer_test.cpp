@@ -143,7 +143,7 @@ TEST(Renderer, IntegratorsAgainstTheReference) {
                               looking_at({-3, 8, 1}, {2, 2, 2}, true, 3.6)};
     const double required[] = {45, 45, 36};  // exact, preintegrated, exp-texture
     for (const Camera& c : cameras) {
-        const CameraFrame frame(c, 128, 128);
+        const CameraFrame frame(c, 512, 512);  // the size
         const Image reference = render_reference(fx.mesh, fx.scalar, tf, frame, background);
         int n = 0;
         for (Integrator integrator :
