@@ -1,0 +1,78 @@
+#include <flowvol/particle_tracer.h>
+
+#include <cmath>
+
+namespace tr {
+namespace {
+
+bool finite(const Vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+ParticleTracer::ParticleTracer(const TetMesh& mesh, const FaceAdjacency& adjacency,
+                               const Field& velocity)
+    : mesh_(mesh), velocity_(velocity), locator_(mesh, adjacency) {}
+
+std::optional<Vec3> ParticleTracer::velocity_at(const Vec3& p, CellId& hint) const {
+    const auto where = locator_.locate(p, hint);
+    if (!where) return std::nullopt;
+    hint = where->tet;
+    return interpolate_vector(mesh_, velocity_, *where);
+}
+
+StepResult ParticleTracer::step(Particle& particle, double dt) const {
+    if (!particle.active) return StepResult::kLeftDomain;
+    CellId hint = particle.tet;
+    const Vec3 x = particle.position;
+    const auto k1 = velocity_at(x, hint);
+    if (!k1) {
+        particle.active = false;
+        return StepResult::kLeftDomain;
+    }
+    if (!finite(*k1)) {
+        particle.active = false;
+        return StepResult::kInvalidField;
+    }
+    if (glm::dot(*k1, *k1) == 0.0) {
+        particle.active = false;
+        return StepResult::kStalled;
+    }
+    CellId h2 = hint, h3 = hint, h4 = hint;
+    const auto k2 = velocity_at(x + 0.5 * dt * *k1, h2);
+    const auto k3 = k2 ? velocity_at(x + 0.5 * dt * *k2, h3) : std::nullopt;
+    const auto k4 = k3 ? velocity_at(x + dt * *k3, h4) : std::nullopt;
+    if (k4) {
+        const Vec3 next = x + dt / 6.0 * (*k1 + 2.0 * *k2 + 2.0 * *k3 + *k4);
+        if (!finite(next)) {
+            particle.active = false;
+            return StepResult::kInvalidField;
+        }
+        CellId h = h4;
+        if (const auto where = locator_.locate(next, h)) {
+            particle.position = next;
+            particle.tet = where->tet;
+            return StepResult::kMoved;
+        }
+    }
+    // The step leaves the mesh: bisect along the Euler path for the last point inside.
+    double inside = 0.0, outside = 1.0;
+    CellId last = hint;
+    while ((outside - inside) > 1e-9) {
+        const double mid = 0.5 * (inside + outside);
+        CellId h = last;
+        if (const auto where = locator_.locate(x + mid * dt * *k1, h)) {
+            inside = mid;
+            last = where->tet;
+        } else {
+            outside = mid;
+        }
+    }
+    particle.position = x + inside * dt * *k1;
+    particle.tet = last;
+    particle.active = false;
+    return StepResult::kLeftDomain;
+}
+
+}  // namespace tr
