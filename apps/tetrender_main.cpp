@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     auto sort_check = add_sort_check_command(app);
     auto sort = add_sort_command(app);
     auto render = add_render_command(app);
+    auto flowvol = add_flowvol_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("sort-check")) return sort_check();
         if (app.got_subcommand("sort")) return sort();
         if (app.got_subcommand("render")) return render();
+        if (app.got_subcommand("flowvol")) return flowvol();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tetrender: internal error: %s\n", e.what());
         return kExitError;

@@ -56,7 +56,8 @@ LOOKUP_TABLE default
 TEST(Cli, HelpAndVersion) {
     auto help = run_cli("--help");
     EXPECT_EQ(help.exit_code, 0);
-    for (const char* cmd : {"info", "tetrahedralize", "demo"}) {
+    for (const char* cmd :
+         {"info", "tetrahedralize", "demo", "render", "sort", "sort-check", "flowvol"}) {
         EXPECT_NE(help.out.find(cmd), std::string::npos) << cmd;
         auto sub = run_cli(std::string(cmd) + " --help");
         EXPECT_EQ(sub.exit_code, 0) << cmd;
@@ -104,6 +105,34 @@ TEST(Cli, TetrahedralizeWritesAVtuThatReadsBack) {
     const auto j = nlohmann::json::parse(info.out);
     EXPECT_EQ(j["cells_by_type"]["tetra"], 12);
     EXPECT_NEAR(j["tetrahedralization"]["volume"].get<double>(), 2.0, 1e-12);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, FlowvolGrowsAndRenders) {
+    const std::string dir = make_temp_dir();
+    // The two hexes with a uniform velocity added to their point data.
+    const auto cell_data = std::string(kTwoHexes).find("CELL_DATA");
+    std::string text = std::string(kTwoHexes).substr(0, cell_data) + "VECTORS v float\n";
+    for (int i = 0; i < 12; ++i) text += "1 0 0\n";
+    text += std::string(kTwoHexes).substr(cell_data);
+    const std::string path = write_file(dir, "flow.vtk", text);
+    const std::string out = dir + "/fv.png", vtu = dir + "/fv.vtu";
+    auto run = run_cli("flowvol " + shell_quote(path) +
+                       " --vectors v --seed-center 0.2,0.5,0.5 --seed-size 0.5,0.5 --seed-res 4"
+                       " --steps 5 --dt 0.1 --size 64x48 -o " +
+                       shell_quote(out) + " --mesh-out " + shell_quote(vtu));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_TRUE(std::filesystem::exists(out));
+    auto info = run_cli("info --json " + shell_quote(vtu));
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    const auto j = nlohmann::json::parse(info.out);
+    // 0.5 x 0.5 polygon, speed 1, 5 steps of 0.1.
+    EXPECT_NEAR(j["tetrahedralization"]["volume"].get<double>(), 0.125, 1e-9);
+    auto missing = run_cli("flowvol " + shell_quote(path) +
+                           " --vectors nope --seed-center 0.2,0.5,0.5 --seed-size 0.5,0.5 -o " +
+                           shell_quote(out + "2.png"));
+    expect_one_line_error(missing);
+    EXPECT_FALSE(std::filesystem::exists(out + "2.png"));
     std::filesystem::remove_all(dir);
 }
 
