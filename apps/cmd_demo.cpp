@@ -91,7 +91,8 @@ int run_demo(const DemoArgs& args) {
         start = std::chrono::steady_clock::now();
         const FlowVolumeView view{
             camera, args.width, args.height, background, {{&cylinder, Vec3(0.75, 0.75, 0.8)}}};
-        const Image image = render_flow_volume(*fv, fv->mesh.num_tets(), *mesh, view);
+        FlowVolumeRenderer renderer(*fv, *mesh, view);
+        const Image& image = renderer.render_up_to(fv->mesh.num_tets());
         const double render_ms = ms_since(start);
         const Status written = write_image(image, args.output);
         if (!written.ok()) return report_error(written.error());

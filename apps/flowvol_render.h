@@ -6,6 +6,8 @@
 #include <core/image.h>
 #include <flowvol/flow_volume.h>
 #include <project/opaque_geometry.h>
+#include <project/segment_shader.h>
+#include <project/transfer_function.h>
 
 #include <vector>
 
@@ -18,8 +20,27 @@ struct FlowVolumeView {
     std::vector<OpaqueSurface> opaque;  // e.g. the body in the flow
 };
 
-// The first `num_tets` tets of the flow volume (the first layers), over the opaque surfaces.
-Image render_flow_volume(const FlowVolume& fv, std::size_t num_tets, const TetMesh& domain,
-                         const FlowVolumeView& view);
+// Renders a flow volume layer after layer: since every tet has the same colour, compositing
+// is order independent, so each frame is the previous one with only the new layer's tets
+// composited over it.
+class FlowVolumeRenderer {
+  public:
+    FlowVolumeRenderer(const FlowVolume& fv, const TetMesh& domain, const FlowVolumeView& view);
+
+    // The picture with tets [0, end) drawn; `end` must not decrease from call to call. Only
+    // the tets added since the last call are drawn.
+    const Image& render_up_to(std::size_t end);
+
+  private:
+    const FlowVolume& fv_;
+    CameraFrame frame_;
+    TransferFunction tf_;
+    SegmentShader shader_;
+    std::vector<float> scalar_;
+    OpaqueLayer opaque_;
+    bool has_opaque_ = false;
+    Image image_;
+    std::size_t drawn_ = 0;
+};
 
 }  // namespace tr::apps
