@@ -92,9 +92,15 @@ Result<Scene> quick_scene(const RenderArgs& args, const TetMesh& mesh) {
 
 // The scene's opaque surfaces: files read here, side sets taken from the mesh as read.
 Result<std::vector<SurfaceMesh>> opaque_surfaces(const Scene& scene, const UnstructuredMesh& input,
+                                                 const SortSetup& setup,
                                                  std::vector<Vec3>& colors) {
     std::vector<SurfaceMesh> surfaces;
     for (const OpaqueSpec& spec : scene.opaque) {
+        if (spec.boundary) {
+            surfaces.push_back(boundary_surface(setup.mesh, setup.adjacency));
+            colors.push_back(spec.color);
+            continue;
+        }
         if (!spec.file.empty()) {
             TR_TRY(SurfaceMesh surface, read_surface(spec.file));
             surfaces.push_back(std::move(surface));
@@ -220,7 +226,7 @@ int run_render(const RenderArgs& args) {
     const SegmentShader shader(scene.transfer_function, *integrator, longest_edge(setup->mesh));
     const double shader_ms = ms_since(shader_start);
     std::vector<Vec3> opaque_colors;
-    auto surfaces = opaque_surfaces(scene, loaded->input, opaque_colors);
+    auto surfaces = opaque_surfaces(scene, loaded->input, *setup, opaque_colors);
     if (!surfaces.ok()) return report_error(surfaces.error());
     std::vector<OpaqueSurface> opaque;
     for (std::size_t i = 0; i < surfaces->size(); ++i) {

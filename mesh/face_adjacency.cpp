@@ -118,6 +118,21 @@ Result<FaceAdjacency> build_face_adjacency(const TetMesh& mesh) {
     return adjacency;
 }
 
+SurfaceMesh boundary_surface(const TetMesh& mesh, const FaceAdjacency& adjacency) {
+    SurfaceMesh surface;
+    surface.name = "boundary";
+    surface.points = mesh.points();
+    for (std::size_t t = 0; t < mesh.num_real_tets(); ++t) {
+        for (int k = 0; k < 4; ++k) {
+            const CellId n = adjacency.neighbors[t][k];
+            if (n == kNoCell || mesh.is_virtual(n)) {
+                surface.triangles.push_back(face_points(mesh, static_cast<CellId>(t), k));
+            }
+        }
+    }
+    return surface;
+}
+
 ConvexityReport check_convexity(const TetMesh& mesh, const FaceAdjacency& adjacency,
                                 double rel_tolerance) {
     ConvexityReport report;

@@ -3,6 +3,7 @@
 // boundary faces; the convexity test.
 
 #include <core/result.h>
+#include <mesh/surface_mesh.h>
 #include <mesh/tet_mesh.h>
 
 #include <array>
@@ -33,6 +34,10 @@ Result<FaceAdjacency> build_face_adjacency(const TetMesh& mesh);
 
 // The three point ids of face k of tet t, outward (counter-clockwise seen from outside t).
 std::array<PointId, 3> face_points(const TetMesh& mesh, CellId t, int k);
+
+// The boundary of the real tets as a triangle surface (faces whose other side is nothing or a
+// virtual tet), outward, on a copy of the mesh's points. Cost: O(tets).
+SurfaceMesh boundary_surface(const TetMesh& mesh, const FaceAdjacency& adjacency);
 
 struct ConvexityReport {
     bool convex = false;

@@ -190,12 +190,23 @@ Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& 
             if (!list.is_array()) fail("$.opaque", "expected an array of surfaces");
             for (std::size_t i = 0; i < list.size(); ++i) {
                 const std::string path = "$.opaque[" + std::to_string(i) + "]";
-                check_keys(list[i], path, {"file", "side_set", "color"});
+                check_keys(list[i], path, {"file", "side_set", "boundary", "color"});
                 OpaqueSpec spec;
                 const bool has_file = list[i].contains("file");
                 const bool has_side_set = list[i].contains("side_set");
-                if (has_file == has_side_set) fail(path, "give exactly one of file and side_set");
-                if (has_file) {
+                const bool has_boundary = list[i].contains("boundary");
+                if (int(has_file) + int(has_side_set) + int(has_boundary) != 1) {
+                    fail(path, "give exactly one of file, side_set and boundary");
+                }
+                if (has_boundary) {
+                    if (!list[i]["boundary"].is_boolean() || !list[i]["boundary"].get<bool>()) {
+                        fail(path + ".boundary", "expected true");
+                    }
+                    spec.boundary = true;
+                }
+                if (has_boundary) {
+                    // nothing more to read
+                } else if (has_file) {
                     if (!list[i]["file"].is_string()) fail(path + ".file", "expected a file path");
                     spec.file = base_dir / list[i]["file"].get<std::string>();
                 } else {
@@ -273,7 +284,9 @@ Status write_scene(const Scene& scene, const std::filesystem::path& path) {
         json list = json::array();
         for (const OpaqueSpec& o : scene.opaque) {
             json item;
-            if (o.side_set.empty()) {
+            if (o.boundary) {
+                item["boundary"] = true;
+            } else if (o.side_set.empty()) {
                 auto rel = std::filesystem::relative(
                     o.file,
                     path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path(),

@@ -14,11 +14,12 @@
 namespace tr {
 
 // Opaque geometry drawn before the volume (an extension of the spec, docs/scene-file.md):
-// a surface file (.stl .ply .obj .off .poly, relative to the scene file) or a side set of the
-// mesh (Exodus), with a colour.
+// a surface file (.stl .ply .obj .off .poly, relative to the scene file), a side set of the
+// mesh (Exodus), or the mesh's own boundary, with a colour.
 struct OpaqueSpec {
     std::filesystem::path file;  // empty when side_set is used
     std::string side_set;        // a side-set name, or "*" for all of them
+    bool boundary = false;       // the mesh's own boundary faces
     Vec3 color{0.8, 0.8, 0.8};
 };
 

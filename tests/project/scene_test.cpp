@@ -115,10 +115,11 @@ TEST(SceneBadInput, MalformedJsonSaysWhere) {
 TEST(Scene, OpaqueSurfacesExtension) {
     std::string text = replace(kScene, ",\n  \"time_step\": 2",
                                R"(, "opaque": [{"file": "body.stl", "color": [1, 0, 0]},
-                                               {"side_set": "*"}])");
+                                               {"side_set": "*"}, {"boundary": true}])");
     auto scene = parse(text);
     ASSERT_TRUE(scene.ok()) << scene.error().to_string();
-    ASSERT_EQ(scene->opaque.size(), 2u);
+    ASSERT_EQ(scene->opaque.size(), 3u);
+    EXPECT_TRUE(scene->opaque[2].boundary);
     EXPECT_EQ(scene->opaque[0].file, std::filesystem::path("/base/body.stl"));
     EXPECT_EQ(scene->opaque[0].color, Vec3(1, 0, 0));
     EXPECT_EQ(scene->opaque[1].side_set, "*");
