@@ -172,6 +172,39 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
             auto scalar_at = [&](const Ray& ray, double t) {
                 return s0 + glm::dot(gradient, ray.origin + t * ray.direction - p0);
             };
+            // The exact segment of pixel (x, y)'s ray through this cell, clipped at the eye and
+            // at opaque depth, shaded and composited. A ray in the plane of a face shared by
+            // two cells belongs to the one whose outward normal is "positive".
+            auto draw_exact = [&](int x, int y, const Ray& ray) {
+                double t_in = 0.0;  // clipped at the eye (near plane)
+                double t_out = std::numeric_limits<double>::infinity();
+                for (int k = 0; k < 4; ++k) {
+                    const double denom = glm::dot(normals[k], ray.direction);
+                    const double num =
+                        orthographic ? offsets[k] - glm::dot(normals[k], ray.origin) : eye_num[k];
+                    if (denom < 0) {
+                        t_in = std::max(t_in, num / denom);
+                    } else if (denom > 0) {
+                        t_out = std::min(t_out, num / denom);
+                    } else if (num < 0 || (num == 0 && !owns_plane(normals[k]))) {
+                        return;
+                    }
+                }
+                if (!(t_out > t_in)) return;
+                const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
+                if (in.opaque_depth) {
+                    t_out = std::min(t_out, (*in.opaque_depth)[pixel]);
+                    if (!(t_out > t_in)) return;
+                }
+                const double s_origin =
+                    orthographic ? s0 + glm::dot(gradient, ray.origin - p0) : s_eye;
+                const double slope = glm::dot(gradient, ray.direction);
+                const ShadedSegment seg = in.shader->shade(s_origin + t_in * slope,
+                                                           s_origin + t_out * slope, t_out - t_in);
+                Vec3f& dst = image.pixels[pixel];
+                dst = seg.color + (1.0f - seg.alpha) * dst;
+                ++tile_fragments;
+            };
             if (shirley_tuchman && !straddles[index]) {
                 // Project, classify (3 or 4 triangles around the thick vertex), rasterize with
                 // thickness and the front and back scalars interpolated across the triangles.
@@ -301,32 +334,7 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                                     continue;
                                 }
                                 on_edges.push_back(local);
-                                const Ray& ray = rays[local];
-                                double t_in = 0.0;
-                                double t_out = std::numeric_limits<double>::infinity();
-                                bool inside = true;
-                                for (int k = 0; k < 4 && inside; ++k) {
-                                    const double denom = glm::dot(normals[k], ray.direction);
-                                    const double num =
-                                        offsets[k] - glm::dot(normals[k], ray.origin);
-                                    if (denom < 0) {
-                                        t_in = std::max(t_in, num / denom);
-                                    } else if (denom > 0) {
-                                        t_out = std::min(t_out, num / denom);
-                                    } else if (num < 0 || (num == 0 && !owns_plane(normals[k]))) {
-                                        inside = false;
-                                    }
-                                }
-                                const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
-                                if (in.opaque_depth) {
-                                    t_out = std::min(t_out, (*in.opaque_depth)[pixel]);
-                                }
-                                if (!inside || !(t_out > t_in)) continue;
-                                const ShadedSegment seg = in.shader->shade(
-                                    scalar_at(ray, t_in), scalar_at(ray, t_out), t_out - t_in);
-                                Vec3f& dst = image.pixels[pixel];
-                                dst = seg.color + (1.0f - seg.alpha) * dst;
-                                ++tile_fragments;
+                                draw_exact(x, y, rays[local]);
                                 continue;
                             }
                             const double b0 = w0 / area, b1 = w1 / area, b2 = w2 / area;
@@ -359,38 +367,7 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
             }
             for (int y = b.y0; y <= b.y1; ++y) {
                 for (int x = b.x0; x <= b.x1; ++x) {
-                    const Ray& ray = rays[(y - py0) * kTile + (x - px0)];
-                    double t_in = 0.0;  // clipped at the eye (near plane)
-                    double t_out = std::numeric_limits<double>::infinity();
-                    bool inside = true;
-                    for (int k = 0; k < 4; ++k) {
-                        const double denom = glm::dot(normals[k], ray.direction);
-                        const double num = orthographic
-                                               ? offsets[k] - glm::dot(normals[k], ray.origin)
-                                               : eye_num[k];
-                        if (denom < 0) {
-                            t_in = std::max(t_in, num / denom);
-                        } else if (denom > 0) {
-                            t_out = std::min(t_out, num / denom);
-                        } else if (num < 0 || (num == 0 && !owns_plane(normals[k]))) {
-                            inside = false;
-                            break;
-                        }
-                    }
-                    if (!inside || !(t_out > t_in)) continue;
-                    const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
-                    if (in.opaque_depth) {
-                        t_out = std::min(t_out, (*in.opaque_depth)[pixel]);
-                        if (!(t_out > t_in)) continue;
-                    }
-                    const double s_origin =
-                        orthographic ? s0 + glm::dot(gradient, ray.origin - p0) : s_eye;
-                    const double slope = glm::dot(gradient, ray.direction);
-                    const ShadedSegment seg = in.shader->shade(
-                        s_origin + t_in * slope, s_origin + t_out * slope, t_out - t_in);
-                    Vec3f& dst = image.pixels[pixel];
-                    dst = seg.color + (1.0f - seg.alpha) * dst;
-                    ++tile_fragments;
+                    draw_exact(x, y, rays[(y - py0) * kTile + (x - px0)]);
                 }
             }
         }

@@ -1,5 +1,6 @@
 // The only translation unit that includes CGAL (slow to compile: keep it alone).
 #include <mesh/copyleft/delaunay.h>
+#include <mesh/tetrahedralize.h>
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -11,7 +12,6 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
-#include <numeric>
 #include <string>
 #include <utility>
 #include <variant>
@@ -75,25 +75,8 @@ Result<TetMesh> triangulate(const UnstructuredMesh& cloud, DelaunayReport& repor
         }
     }
 
-    // Merge identical points into the first of them: sort by coordinates, ties by index.
-    std::vector<PointId> order(n);
-    std::iota(order.begin(), order.end(), PointId{0});
-    auto less = [&](PointId a, PointId b) {
-        const Vec3& p = points[a];
-        const Vec3& q = points[b];
-        if (p.x != q.x) return p.x < q.x;
-        if (p.y != q.y) return p.y < q.y;
-        if (p.z != q.z) return p.z < q.z;
-        return a < b;
-    };
-    std::sort(order.begin(), order.end(), less);
-    std::vector<PointId> representative(n);
-    for (std::size_t i = 0; i < n;) {
-        std::size_t j = i + 1;
-        while (j < n && points[order[j]] == points[order[i]]) ++j;
-        for (std::size_t k = i; k < j; ++k) representative[order[k]] = order[i];
-        i = j;
-    }
+    // Merge identical points into the first of them (the split's exact merging).
+    const std::vector<PointId> representative = find_coincident_points(points, 0.0, {});
     std::vector<PointId> kept;  // input index of each distinct point, in input order
     std::vector<PointId> new_index(n);
     for (std::size_t i = 0; i < n; ++i) {
