@@ -1,6 +1,8 @@
 // tetrender render: a scene file, or a mesh with --scalar for a quick look, to PNG or PFM.
 #include <apps/cli_common.h>
 #include <apps/commands.h>
+#include <apps/flowvol_render.h>
+#include <apps/flowvol_setup.h>
 #include <apps/sort_setup.h>
 #include <core/parallel.h>
 #include <io/read_surface.h>
@@ -92,12 +94,13 @@ Result<Scene> quick_scene(const RenderArgs& args, const TetMesh& mesh) {
 
 // The scene's opaque surfaces: files read here, side sets taken from the mesh as read.
 Result<std::vector<SurfaceMesh>> opaque_surfaces(const Scene& scene, const UnstructuredMesh& input,
-                                                 const SortSetup& setup,
+                                                 const TetMesh& mesh,
+                                                 const FaceAdjacency& adjacency,
                                                  std::vector<Vec3>& colors) {
     std::vector<SurfaceMesh> surfaces;
     for (const OpaqueSpec& spec : scene.opaque) {
         if (spec.boundary) {
-            surfaces.push_back(boundary_surface(setup.mesh, setup.adjacency));
+            surfaces.push_back(boundary_surface(mesh, adjacency));
             colors.push_back(spec.color);
             continue;
         }
@@ -126,6 +129,61 @@ Result<std::vector<SurfaceMesh>> opaque_surfaces(const Scene& scene, const Unstr
         }
     }
     return surfaces;
+}
+
+// A scene with a flow volume: the dye grown from the scene's mesh, drawn without sorting over
+// the opaque geometry (the scene's scalar is checked but not drawn).
+int render_flow_volume(const Scene& scene, const LoadedMesh& loaded, const RenderArgs& args) {
+    const std::string mesh_name = scene.mesh.string();
+    FlowVolumeSpec spec = *scene.flow_volume;
+    const std::vector<double>& times = loaded.input.time_values;
+    if (spec.unsteady && !spec.start_time && times.size() > 1) {
+        spec.start_time = times[static_cast<std::size_t>(scene.time_step)];
+    }
+    auto adjacency = build_face_adjacency(loaded.tets);
+    if (!adjacency.ok()) return report_error(with_where(adjacency.error(), mesh_name));
+    auto velocity = load_velocity(mesh_name, loaded, spec.vectors, spec.unsteady);
+    if (!velocity.ok()) return report_error(velocity.error());
+    const auto start = std::chrono::steady_clock::now();
+    auto fv = grow_flow_volume(loaded.tets, *adjacency, *velocity, dye_seed(spec),
+                               flow_volume_options(spec), terminal_progress());
+    if (!fv.ok()) return report_error(with_where(fv.error(), args.input));
+    const double grow_ms = ms_since(start);
+    std::vector<Vec3> opaque_colors;
+    auto surfaces = opaque_surfaces(scene, loaded.input, loaded.tets, *adjacency, opaque_colors);
+    if (!surfaces.ok()) return report_error(surfaces.error());
+    FlowVolumeView view{scene.camera, scene.width, scene.height, scene.background, {}};
+    for (std::size_t i = 0; i < surfaces->size(); ++i) {
+        view.opaque.push_back({&(*surfaces)[i], opaque_colors[i]});
+    }
+    view.dye_color = spec.color;
+    view.dye_opacity = spec.opacity;
+    view.unit_distance = spec.unit_distance.value_or(0.0);
+    SurfaceMesh boundary;
+    if (spec.context) {
+        boundary = boundary_surface(loaded.tets, *adjacency);
+        view.context = &boundary;
+    }
+    const auto render_start = std::chrono::steady_clock::now();
+    FlowVolumeRenderer renderer(*fv, loaded.tets, view);
+    const Image image = renderer.render_up_to(fv->mesh.num_tets());
+    const double render_ms = ms_since(render_start);
+    const Status written = write_image(image, args.output);
+    if (!written.ok()) return report_error(written.error());
+    if (args.stats) {
+        nlohmann::json j = {{"load_ms", loaded.read_ms},
+                            {"tetrahedralize_ms", loaded.tetrahedralize_ms},
+                            {"grow_ms", grow_ms},
+                            {"render_ms", render_ms},
+                            {"layers", fv->layer_tets.size()},
+                            {"flow_volume_tets", fv->mesh.num_tets()},
+                            {"particles_inserted", fv->particles_inserted},
+                            {"particles_stopped", fv->particles_stopped},
+                            {"width", scene.width},
+                            {"height", scene.height}};
+        std::printf("%s\n", j.dump().c_str());
+    }
+    return kExitOk;
 }
 
 int run_render(const RenderArgs& args) {
@@ -186,6 +244,14 @@ int run_render(const RenderArgs& args) {
                 mesh_name));
         }
     }
+    if (scene.flow_volume) {
+        if (reference) {
+            return report_error(make_error(ErrorCode::kUnsupported,
+                                           "--integrator reference does not draw flow volumes",
+                                           args.input));
+        }
+        return render_flow_volume(scene, *loaded, args);
+    }
     const std::size_t cells = loaded->tets.num_real_tets();
     if (reference) {
         // The brute-force reference ray caster: no sort, no opaque geometry.
@@ -226,7 +292,8 @@ int run_render(const RenderArgs& args) {
     const SegmentShader shader(scene.transfer_function, *integrator, longest_edge(setup->mesh));
     const double shader_ms = ms_since(shader_start);
     std::vector<Vec3> opaque_colors;
-    auto surfaces = opaque_surfaces(scene, loaded->input, *setup, opaque_colors);
+    auto surfaces =
+        opaque_surfaces(scene, loaded->input, setup->mesh, setup->adjacency, opaque_colors);
     if (!surfaces.ok()) return report_error(surfaces.error());
     std::vector<OpaqueSurface> opaque;
     for (std::size_t i = 0; i < surfaces->size(); ++i) {

@@ -1,16 +1,21 @@
 #include <apps/flowvol_render.h>
 #include <project/cpu_renderer.h>
 
+#include <cmath>
 #include <numeric>
 
 namespace tr::apps {
 namespace {
 
-// Dye: a pale smoke colour; opacity by concentration (1 for incompressible flow), a slab of a
-// thirtieth of the domain's diagonal letting through 70%.
-TransferFunction dye(const TetMesh& domain) {
-    return TransferFunction::create({{0.0, {0.85, 0.9, 1.0}}}, {{0.0, 0.0}, {1.0, 0.3}},
-                                    domain.bounds().diagonal() / 30.0)
+constexpr double kVeilOpacity = 0.15;
+
+// Dye: one glow colour; opacity by concentration (1 for incompressible flow), by default a
+// slab of a thirtieth of the domain's diagonal letting through 70%.
+TransferFunction dye(const TetMesh& domain, const FlowVolumeView& view) {
+    const double unit =
+        view.unit_distance > 0 ? view.unit_distance : domain.bounds().diagonal() / 30.0;
+    return TransferFunction::create({{0.0, view.dye_color}}, {{0.0, 0.0}, {1.0, view.dye_opacity}},
+                                    unit)
         .value();
 }
 
@@ -20,7 +25,7 @@ FlowVolumeRenderer::FlowVolumeRenderer(const FlowVolume& fv, const TetMesh& doma
                                        const FlowVolumeView& view)
     : fv_(fv),
       frame_(view.camera, view.width, view.height),
-      tf_(dye(domain)),
+      tf_(dye(domain, view)),
       shader_(tf_, Integrator::kPreintegrated, longest_edge(fv.mesh)),
       scalar_(fv.mesh.num_points(), 1.0f),
       image_(view.width, view.height, Vec3f(view.background)) {
@@ -32,11 +37,29 @@ FlowVolumeRenderer::FlowVolumeRenderer(const FlowVolume& fv, const TetMesh& doma
         image_ = opaque_.color;
         has_opaque_ = true;
     }
+    if (view.context) {
+        veil_ = render_opaque({{view.context, Vec3(0.7, 0.72, 0.8)}}, frame_, Vec3(0.0));
+        has_veil_ = true;
+    }
 }
 
-const Image& FlowVolumeRenderer::render_up_to(std::size_t end) {
+Image FlowVolumeRenderer::render_up_to(std::size_t end) {
     end = std::min(end, fv_.mesh.num_tets());
-    if (end <= drawn_) return image_;
+    if (end > drawn_) draw_up_to(end);
+    if (!has_veil_) return image_;
+    Image veiled = image_;
+    for (int y = 0; y < veiled.height; ++y) {
+        for (int x = 0; x < veiled.width; ++x) {
+            const std::size_t p = static_cast<std::size_t>(y) * veiled.width + x;
+            if (!std::isfinite(veil_.depth[p])) continue;
+            veiled.at(x, y) = static_cast<float>(1 - kVeilOpacity) * veiled.at(x, y) +
+                              static_cast<float>(kVeilOpacity) * veil_.color.at(x, y);
+        }
+    }
+    return veiled;
+}
+
+void FlowVolumeRenderer::draw_up_to(std::size_t end) {
     std::vector<CellId> order(end - drawn_);
     std::iota(order.begin(), order.end(), static_cast<CellId>(drawn_));
     RenderInputs in;
@@ -49,7 +72,6 @@ const Image& FlowVolumeRenderer::render_up_to(std::size_t end) {
     if (has_opaque_) in.opaque_depth = &opaque_.depth;
     image_ = render_projected_tetrahedra(in);
     drawn_ = end;
-    return image_;
 }
 
 }  // namespace tr::apps

@@ -18,6 +18,12 @@ struct FlowVolumeView {
     int width, height;
     Vec3 background;
     std::vector<OpaqueSurface> opaque;  // e.g. the body in the flow
+    Vec3 dye_color{0.85, 0.9, 1.0};
+    double dye_opacity = 0.3;  // of a slab of concentration 1, unit_distance thick
+    double unit_distance = 0;  // 0: the domain's bounding diagonal / 30
+    // The domain's boundary as a faint veil in front of the dye (its nearest surface, shaded,
+    // at 15% over the picture): context for where the flow is.
+    const SurfaceMesh* context = nullptr;
 };
 
 // Renders a flow volume layer after layer: since every tet has the same colour, compositing
@@ -29,9 +35,11 @@ class FlowVolumeRenderer {
 
     // The picture with tets [0, end) drawn; `end` must not decrease from call to call. Only
     // the tets added since the last call are drawn.
-    const Image& render_up_to(std::size_t end);
+    Image render_up_to(std::size_t end);
 
   private:
+    void draw_up_to(std::size_t end);
+
     const FlowVolume& fv_;
     CameraFrame frame_;
     TransferFunction tf_;
@@ -39,6 +47,8 @@ class FlowVolumeRenderer {
     std::vector<float> scalar_;
     OpaqueLayer opaque_;
     bool has_opaque_ = false;
+    OpaqueLayer veil_;
+    bool has_veil_ = false;
     Image image_;
     std::size_t drawn_ = 0;
 };

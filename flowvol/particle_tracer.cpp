@@ -12,21 +12,21 @@ bool finite(const Vec3& v) {
 }  // namespace
 
 ParticleTracer::ParticleTracer(const TetMesh& mesh, const FaceAdjacency& adjacency,
-                               const Field& velocity)
-    : mesh_(mesh), velocity_(velocity), locator_(mesh, adjacency) {}
+                               const VelocityField& velocity)
+    : velocity_(velocity), locator_(mesh, adjacency) {}
 
-std::optional<Vec3> ParticleTracer::velocity_at(const Vec3& p, CellId& hint) const {
+std::optional<Vec3> ParticleTracer::velocity_at(const Vec3& p, double time, CellId& hint) const {
     const auto where = locator_.locate(p, hint);
     if (!where) return std::nullopt;
     hint = where->tet;
-    return interpolate_vector(mesh_, velocity_, *where);
+    return velocity_.at(*where, time);
 }
 
-StepResult ParticleTracer::step(Particle& particle, double dt) const {
+StepResult ParticleTracer::step(Particle& particle, double time, double dt) const {
     if (!particle.active) return StepResult::kLeftDomain;
     CellId hint = particle.tet;
     const Vec3 x = particle.position;
-    const auto k1 = velocity_at(x, hint);
+    const auto k1 = velocity_at(x, time, hint);
     if (!k1) {
         particle.active = false;
         return StepResult::kLeftDomain;
@@ -40,9 +40,10 @@ StepResult ParticleTracer::step(Particle& particle, double dt) const {
         return StepResult::kStalled;
     }
     CellId h2 = hint, h3 = hint, h4 = hint;
-    const auto k2 = velocity_at(x + 0.5 * dt * *k1, h2);
-    const auto k3 = k2 ? velocity_at(x + 0.5 * dt * *k2, h3) : std::nullopt;
-    const auto k4 = k3 ? velocity_at(x + dt * *k3, h4) : std::nullopt;
+    const double half = time + 0.5 * dt;
+    const auto k2 = velocity_at(x + 0.5 * dt * *k1, half, h2);
+    const auto k3 = k2 ? velocity_at(x + 0.5 * dt * *k2, half, h3) : std::nullopt;
+    const auto k4 = k3 ? velocity_at(x + dt * *k3, time + dt, h4) : std::nullopt;
     if (k4) {
         const Vec3 next = x + dt / 6.0 * (*k1 + 2.0 * *k2 + 2.0 * *k3 + *k4);
         if (!finite(next)) {

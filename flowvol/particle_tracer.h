@@ -1,9 +1,10 @@
 #pragma once
-// Particles advected through a point-data vector field on a TetMesh by classical RK4, with
-// point location by adjacency walks: the engine of flow volumes (texture-mapping paper, 4.1).
+// Particles advected through a velocity field (steady or unsteady) on a TetMesh by classical
+// RK4, with point location by adjacency walks: the engine of flow volumes (texture-mapping
+// paper, 4.1).
 
 #include <flowvol/point_locator.h>
-#include <mesh/field.h>
+#include <flowvol/velocity_field.h>
 
 #include <optional>
 
@@ -24,23 +25,23 @@ enum class StepResult {
 
 class ParticleTracer {
   public:
-    // `velocity` is a 3-component point field of `mesh`. All three must outlive the tracer.
-    // Precondition: velocity.num_components == 3 and one tuple per point.
-    ParticleTracer(const TetMesh& mesh, const FaceAdjacency& adjacency, const Field& velocity);
+    // `velocity` is defined on `mesh`. All three must outlive the tracer.
+    ParticleTracer(const TetMesh& mesh, const FaceAdjacency& adjacency,
+                   const VelocityField& velocity);
 
-    // The velocity at p, or nothing outside the mesh; `hint` is updated to the tet found.
-    std::optional<Vec3> velocity_at(const Vec3& p, CellId& hint) const;
+    // The velocity at p at `time`, or nothing outside the mesh; `hint` is updated to the tet
+    // found.
+    std::optional<Vec3> velocity_at(const Vec3& p, double time, CellId& hint) const;
 
-    // One RK4 step of length dt (> 0). A step that would leave the mesh is cut where the
-    // particle's path crosses the boundary (bisection on the Euler path, to 1e-9 of dt) and
-    // the particle stops there. Inactive particles are left alone (kLeftDomain is returned).
-    StepResult step(Particle& particle, double dt) const;
+    // One RK4 step from `time` to time + dt (dt > 0). A step that would leave the mesh is cut where
+    // the particle's path crosses the boundary (bisection on the Euler path, to 1e-9 of dt) and the
+    // particle stops there. Inactive particles are left alone (kLeftDomain is returned).
+    StepResult step(Particle& particle, double time, double dt) const;
 
     const PointLocator& locator() const { return locator_; }
 
   private:
-    const TetMesh& mesh_;
-    const Field& velocity_;
+    const VelocityField& velocity_;
     PointLocator locator_;
 };
 

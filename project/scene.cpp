@@ -120,6 +120,93 @@ Camera camera(const json& j, const std::string& path) {
     return c;
 }
 
+FlowVolumeSpec flow_volume(const json& j, const std::string& path) {
+    check_keys(j, path,
+               {"vectors", "seed_center", "seed_size", "seed_resolution", "seed_normal", "steps",
+                "dt", "compressible", "split_threshold", "unsteady", "start_time", "color",
+                "opacity", "unit_distance", "context"});
+    const auto flag = [&](const char* key, bool& out) {
+        if (!j.contains(key)) return;
+        if (!j[key].is_boolean()) fail(path + "." + key, "expected true or false");
+        out = j[key].get<bool>();
+    };
+    FlowVolumeSpec f;
+    const json& vectors = require(j, path, "vectors");
+    if (!vectors.is_string() || vectors.get<std::string>().empty()) {
+        fail(path + ".vectors", "expected a vector array's name");
+    }
+    f.vectors = vectors.get<std::string>();
+    f.seed_center = vec3(require(j, path, "seed_center"), path + ".seed_center");
+    const auto size = numbers(require(j, path, "seed_size"), path + ".seed_size", 2);
+    if (!(size[0] > 0 && size[1] > 0)) fail(path + ".seed_size", "must be positive");
+    f.seed_width = size[0];
+    f.seed_height = size[1];
+    if (j.contains("seed_resolution")) {
+        f.seed_resolution = integer(j["seed_resolution"], path + ".seed_resolution");
+        if (f.seed_resolution < 1 || f.seed_resolution > 4096) {
+            fail(path + ".seed_resolution", "must be between 1 and 4096");
+        }
+    }
+    if (j.contains("seed_normal")) {
+        f.seed_normal = vec3(j["seed_normal"], path + ".seed_normal");
+        if (glm::length(*f.seed_normal) == 0) fail(path + ".seed_normal", "must not be zero");
+    }
+    if (j.contains("steps")) {
+        f.steps = integer(j["steps"], path + ".steps");
+        if (f.steps < 1 || f.steps > 100000) fail(path + ".steps", "must be between 1 and 100000");
+    }
+    if (j.contains("dt")) {
+        f.dt = number(j["dt"], path + ".dt");
+        if (!(f.dt > 0)) fail(path + ".dt", "must be positive");
+    }
+    flag("compressible", f.compressible);
+    if (j.contains("split_threshold")) {
+        f.split_threshold = number(j["split_threshold"], path + ".split_threshold");
+        if (!(f.split_threshold == 0 || f.split_threshold >= 1.5)) {
+            fail(path + ".split_threshold", "must be 0 (off) or at least 1.5");
+        }
+    }
+    flag("unsteady", f.unsteady);
+    if (j.contains("start_time")) f.start_time = number(j["start_time"], path + ".start_time");
+    if (j.contains("color")) {
+        f.color = vec3(j["color"], path + ".color");
+        for (int c = 0; c < 3; ++c) {
+            if (f.color[c] < 0 || f.color[c] > 1)
+                fail(path + ".color", "components must be in [0, 1]");
+        }
+    }
+    if (j.contains("opacity")) {
+        f.opacity = number(j["opacity"], path + ".opacity");
+        if (!(f.opacity > 0 && f.opacity < 1)) fail(path + ".opacity", "must be in (0, 1)");
+    }
+    if (j.contains("unit_distance")) {
+        f.unit_distance = number(j["unit_distance"], path + ".unit_distance");
+        if (!(*f.unit_distance > 0)) fail(path + ".unit_distance", "must be positive");
+    }
+    flag("context", f.context);
+    return f;
+}
+
+json flow_volume_json(const FlowVolumeSpec& f) {
+    const auto array = [](const Vec3& v) { return json::array({v.x, v.y, v.z}); };
+    json j = {{"vectors", f.vectors},
+              {"seed_center", array(f.seed_center)},
+              {"seed_size", {f.seed_width, f.seed_height}},
+              {"seed_resolution", f.seed_resolution},
+              {"steps", f.steps},
+              {"dt", f.dt},
+              {"compressible", f.compressible},
+              {"split_threshold", f.split_threshold},
+              {"unsteady", f.unsteady},
+              {"color", array(f.color)},
+              {"opacity", f.opacity},
+              {"context", f.context}};
+    if (f.seed_normal) j["seed_normal"] = array(*f.seed_normal);
+    if (f.start_time) j["start_time"] = *f.start_time;
+    if (f.unit_distance) j["unit_distance"] = *f.unit_distance;
+    return j;
+}
+
 }  // namespace
 
 Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& base_dir,
@@ -139,7 +226,7 @@ Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& 
         Scene scene;
         check_keys(j, "$",
                    {"mesh", "scalar", "component", "transfer_function", "camera", "image",
-                    "time_step", "opaque"});
+                    "time_step", "opaque", "flow_volume"});
         const json& mesh = require(j, "$", "mesh");
         if (!mesh.is_string() || mesh.get<std::string>().empty())
             fail("$.mesh", "expected a file path");
@@ -226,6 +313,8 @@ Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& 
                 scene.opaque.push_back(spec);
             }
         }
+        if (j.contains("flow_volume"))
+            scene.flow_volume = flow_volume(j["flow_volume"], "$.flow_volume");
         return scene;
     } catch (const SceneError& e) {
         return make_error(ErrorCode::kParse, e.path + ": " + e.message, name);
@@ -300,6 +389,7 @@ Status write_scene(const Scene& scene, const std::filesystem::path& path) {
         }
         j["opaque"] = list;
     }
+    if (scene.flow_volume) j["flow_volume"] = flow_volume_json(*scene.flow_volume);
     const auto tmp = path.string() + ".tmp";
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

@@ -8,6 +8,7 @@
 #include <project/transfer_function.h>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,26 @@ struct OpaqueSpec {
     Vec3 color{0.8, 0.8, 0.8};
 };
 
+// A flow volume grown from the scene's mesh and drawn instead of its scalar (an extension of
+// the spec, docs/scene-file.md; flowvol/flow_volume.h says what each value does).
+struct FlowVolumeSpec {
+    std::string vectors;  // a 3-component point array of the mesh
+    Vec3 seed_center{0.0};
+    double seed_width = 1.0, seed_height = 1.0;
+    int seed_resolution = 32;
+    std::optional<Vec3> seed_normal;  // default: the flow at the centre
+    int steps = 50;
+    double dt = 0.05;
+    bool compressible = false;
+    double split_threshold = 2.0;  // 0: no adaptive subdivision
+    bool unsteady = false;         // interpolate over all the mesh file's time steps
+    std::optional<double> start_time;
+    Vec3 color{0.85, 0.9, 1.0};           // the dye's glow
+    double opacity = 0.3;                 // of a slab of full concentration, unit_distance thick
+    std::optional<double> unit_distance;  // default: the mesh's bounding diagonal / 30
+    bool context = false;                 // the domain's boundary as a faint veil
+};
+
 struct Scene {
     std::filesystem::path mesh;  // resolved against the scene file's folder
     std::string scalar;
@@ -34,6 +55,7 @@ struct Scene {
     Vec3 background{0.0};
     int time_step = 0;
     std::vector<OpaqueSpec> opaque;
+    std::optional<FlowVolumeSpec> flow_volume;
 };
 
 // Limits on what a scene may ask for.

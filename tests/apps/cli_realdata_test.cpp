@@ -113,5 +113,26 @@ TEST(InfoOnRealDataRepairs, CountsWhatTheFilesHide) {
     EXPECT_EQ(quadratic["cells_by_type"]["quadratic_tetra"], 56786);
 }
 
+// A flow volume through disk_out_ref's velocity V, down the chamber past the spinning disk:
+// it grows every layer, with the front refined where it stretches, and renders.
+TEST(FlowvolOnRealData, DiskOutRefVelocity) {
+    if (!require_data()) GTEST_SKIP() << "no shared data at " << data_dir();
+    const std::string dir = testing::make_temp_dir();
+    const auto run = testing::run_cli(
+        "flowvol " + testing::shell_quote((data_dir() / "disk_out_ref/disk_out_ref.ex2").string()) +
+        " --vectors V --seed-center 2,0,8 --seed-size 2,2 --seed-res 16 --steps 30 --dt 0.02"
+        " --context --size 96x96 -o " +
+        testing::shell_quote(dir + "/fv.png") + " --mesh-out " +
+        testing::shell_quote(dir + "/fv.vtu"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.out.find("30 layers"), std::string::npos) << run.out;
+    const auto info = testing::run_cli("info --json " + testing::shell_quote(dir + "/fv.vtu"));
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    const auto j = nlohmann::json::parse(info.out);
+    EXPECT_GT(j["tetrahedralization"]["volume"].get<double>(), 0.0);
+    EXPECT_TRUE(std::filesystem::exists(dir + "/fv.png"));
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace tr

@@ -108,14 +108,17 @@ TEST(Cli, TetrahedralizeWritesAVtuThatReadsBack) {
     std::filesystem::remove_all(dir);
 }
 
-TEST(Cli, FlowvolGrowsAndRenders) {
-    const std::string dir = make_temp_dir();
-    // The two hexes with a uniform velocity added to their point data.
+// The two hexes with a uniform velocity (speed, 0, 0) added to their point data.
+std::string two_hexes_with_flow(double speed) {
     const auto cell_data = std::string(kTwoHexes).find("CELL_DATA");
     std::string text = std::string(kTwoHexes).substr(0, cell_data) + "VECTORS v float\n";
-    for (int i = 0; i < 12; ++i) text += "1 0 0\n";
-    text += std::string(kTwoHexes).substr(cell_data);
-    const std::string path = write_file(dir, "flow.vtk", text);
+    for (int i = 0; i < 12; ++i) text += std::to_string(speed) + " 0 0\n";
+    return text + std::string(kTwoHexes).substr(cell_data);
+}
+
+TEST(Cli, FlowvolGrowsAndRenders) {
+    const std::string dir = make_temp_dir();
+    const std::string path = write_file(dir, "flow.vtk", two_hexes_with_flow(1.0));
     const std::string out = dir + "/fv.png", vtu = dir + "/fv.vtu";
     auto run = run_cli("flowvol " + shell_quote(path) +
                        " --vectors v --seed-center 0.2,0.5,0.5 --seed-size 0.5,0.5 --seed-res 4"
@@ -133,6 +136,70 @@ TEST(Cli, FlowvolGrowsAndRenders) {
                            shell_quote(out + "2.png"));
     expect_one_line_error(missing);
     EXPECT_FALSE(std::filesystem::exists(out + "2.png"));
+    std::filesystem::remove_all(dir);
+}
+
+// A .pvd series whose speed rises from 1 at t = 0 to 2 at t = 1: dye released at t = 0 for
+// 0.5 fills 0.25 x (0.5 + 0.125); a single file is not a series; running past t = 1 is an
+// error.
+TEST(Cli, FlowvolUnsteadySeries) {
+    const std::string dir = make_temp_dir();
+    write_file(dir, "s0.vtk", two_hexes_with_flow(1.0));
+    write_file(dir, "s1.vtk", two_hexes_with_flow(2.0));
+    const std::string series = write_file(
+        dir, "flow.pvd",
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+        "<Collection>\n<DataSet timestep=\"0\" part=\"0\" file=\"s0.vtk\"/>\n"
+        "<DataSet timestep=\"1\" part=\"0\" file=\"s1.vtk\"/>\n</Collection>\n</VTKFile>\n");
+    const std::string seed =
+        " --vectors v --seed-center 0.2,0.5,0.5 --seed-size 0.5,0.5 --seed-res 4 --dt 0.1"
+        " --size 32x32 --unsteady -o ";
+    const std::string vtu = dir + "/fv.vtu";
+    auto run = run_cli("flowvol " + shell_quote(series) + seed + shell_quote(dir + "/a.png") +
+                       " --steps 5 --mesh-out " + shell_quote(vtu));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    auto info = run_cli("info --json " + shell_quote(vtu));
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    EXPECT_NEAR(nlohmann::json::parse(info.out)["tetrahedralization"]["volume"].get<double>(),
+                0.25 * 0.625, 1e-9);
+    auto past = run_cli("flowvol " + shell_quote(series) + seed + shell_quote(dir + "/b.png") +
+                        " --steps 11");
+    expect_one_line_error(past);
+    EXPECT_NE(past.err.find("outside the velocity's times"), std::string::npos) << past.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/b.png"));
+    auto single = run_cli("flowvol " + shell_quote(dir + "/s0.vtk") + seed +
+                          shell_quote(dir + "/c.png") + " --steps 2");
+    expect_one_line_error(single);
+    EXPECT_NE(single.err.find("time series"), std::string::npos) << single.err;
+    std::filesystem::remove_all(dir);
+}
+
+// The scene key flow_volume: the dye drawn instead of the scalar; its keys are checked.
+TEST(Cli, SceneWithAFlowVolume) {
+    const std::string dir = make_temp_dir();
+    write_file(dir, "flow.vtk", two_hexes_with_flow(1.0));
+    const std::string common = R"("mesh": "flow.vtk", "scalar": "temperature",
+      "transfer_function": {"color": [[0, 1, 1, 1]], "opacity": [[0, 0.5]], "unit_distance": 1},
+      "camera": {"position": [1, -4, 0.5], "focal_point": [1, 0.5, 0.5], "view_up": [0, 0, 1]},
+      "image": {"width": 48, "height": 32},)";
+    const std::string scene = write_file(dir, "fv.json", "{" + common + R"(
+      "flow_volume": {"vectors": "v", "seed_center": [0.2, 0.5, 0.5], "seed_size": [0.5, 0.5],
+                      "seed_resolution": 4, "steps": 5, "dt": 0.1, "color": [1, 0.5, 0.2],
+                      "opacity": 0.5, "unit_distance": 0.2, "context": true}})");
+    auto run =
+        run_cli("render " + shell_quote(scene) + " --stats -o " + shell_quote(dir + "/fv.png"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto stats = nlohmann::json::parse(run.out);
+    EXPECT_EQ(stats["layers"], 5);
+    EXPECT_GT(stats["flow_volume_tets"].get<int>(), 0);
+    EXPECT_TRUE(std::filesystem::exists(dir + "/fv.png"));
+    const std::string bad = write_file(dir, "bad.json", "{" + common + R"(
+      "flow_volume": {"vectors": "v", "seed_center": [0.2, 0.5, 0.5], "seed_size": [0.5, 0.5],
+                      "stepz": 5}})");
+    auto rejected = run_cli("render " + shell_quote(bad) + " -o " + shell_quote(dir + "/x.png"));
+    expect_one_line_error(rejected);
+    EXPECT_NE(rejected.err.find("$.flow_volume.stepz"), std::string::npos) << rejected.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
     std::filesystem::remove_all(dir);
 }
 

@@ -105,13 +105,14 @@ TEST(ParticleTracer, RigidRotationReturnsToItsStart) {
     const Fixture f = grid(6);
     // v = (-y, x, 0): one turn every 2 pi.
     const Field field = linear_field(f.mesh, glm::dmat3(0, 1, 0, -1, 0, 0, 0, 0, 0), Vec3(0.0));
-    const ParticleTracer tracer(f.mesh, f.adjacency, field);
+    const VelocityField velocity = VelocityField::steady(f.mesh, field).value();
+    const ParticleTracer tracer(f.mesh, f.adjacency, velocity);
     Particle p{Vec3(1.7, 0.2, 0.9)};
     const int steps = 400;
     const double dt = 2 * M_PI / steps;
     double radius_error = 0;
     for (int i = 0; i < steps; ++i) {
-        ASSERT_EQ(tracer.step(p, dt), StepResult::kMoved) << i;
+        ASSERT_EQ(tracer.step(p, i * dt, dt), StepResult::kMoved) << i;
         radius_error = std::max(
             radius_error, std::abs(std::hypot(p.position.x, p.position.y) - std::hypot(1.7, 0.2)));
     }
@@ -122,32 +123,70 @@ TEST(ParticleTracer, RigidRotationReturnsToItsStart) {
 TEST(ParticleTracer, UniformFlowStopsOnTheBoundary) {
     const Fixture f = grid(4);
     const Field field = linear_field(f.mesh, glm::dmat3(0.0), Vec3(1, 0, 0));
-    const ParticleTracer tracer(f.mesh, f.adjacency, field);
+    const VelocityField velocity = VelocityField::steady(f.mesh, field).value();
+    const ParticleTracer tracer(f.mesh, f.adjacency, velocity);
     Particle p{Vec3(-1.5, 0.3, -0.4)};
     int moved = 0;
     StepResult r = StepResult::kMoved;
-    while ((r = tracer.step(p, 0.3)) == StepResult::kMoved) ++moved;
+    while ((r = tracer.step(p, 0.0, 0.3)) == StepResult::kMoved) ++moved;
     EXPECT_EQ(r, StepResult::kLeftDomain);
     EXPECT_EQ(moved, 11);  // 3.5 / 0.3
     EXPECT_NEAR(p.position.x, 2.0, 1e-8);
     EXPECT_NEAR(p.position.y, 0.3, 1e-12);
     EXPECT_FALSE(p.active);
-    EXPECT_EQ(tracer.step(p, 0.3), StepResult::kLeftDomain);  // stays stopped
+    EXPECT_EQ(tracer.step(p, 0.0, 0.3), StepResult::kLeftDomain);  // stays stopped
 }
 
 TEST(ParticleTracer, ZeroAndInvalidVelocitiesStopCleanly) {
     const Fixture f = grid(2);
     const Field zero = linear_field(f.mesh, glm::dmat3(0.0), Vec3(0.0));
-    const ParticleTracer still(f.mesh, f.adjacency, zero);
+    const VelocityField zero_velocity = VelocityField::steady(f.mesh, zero).value();
+    const ParticleTracer still(f.mesh, f.adjacency, zero_velocity);
     Particle p{Vec3(0.1, 0.1, 0.1)};
-    EXPECT_EQ(still.step(p, 0.1), StepResult::kStalled);
+    EXPECT_EQ(still.step(p, 0.0, 0.1), StepResult::kStalled);
     std::vector<float> nan(f.mesh.num_points() * 3, std::numeric_limits<float>::quiet_NaN());
     const Field bad = make_float_field("velocity", 3, nan);
-    const ParticleTracer broken(f.mesh, f.adjacency, bad);
+    const VelocityField bad_velocity = VelocityField::steady(f.mesh, bad).value();
+    const ParticleTracer broken(f.mesh, f.adjacency, bad_velocity);
     Particle q{Vec3(0.1, 0.1, 0.1)};
-    EXPECT_EQ(broken.step(q, 0.1), StepResult::kInvalidField);
+    EXPECT_EQ(broken.step(q, 0.0, 0.1), StepResult::kInvalidField);
     Particle outside{Vec3(5, 5, 5)};
-    EXPECT_EQ(still.step(outside, 0.1), StepResult::kLeftDomain);
+    EXPECT_EQ(still.step(outside, 0.0, 0.1), StepResult::kLeftDomain);
+}
+
+// v(t) linear in time between samples: over [0, 2] with samples (1, 0, 0), (0, 1, 0),
+// (0, 0, 1) at t = 0, 1, 2 the displacement is the trapezoid rule per interval, which RK4
+// integrates exactly (the field is uniform in space).
+TEST(ParticleTracer, UnsteadyFlowIsLinearInTime) {
+    const Fixture f = grid(4);
+    std::vector<Field> samples = {linear_field(f.mesh, glm::dmat3(0.0), Vec3(1, 0, 0)),
+                                  linear_field(f.mesh, glm::dmat3(0.0), Vec3(0, 1, 0)),
+                                  linear_field(f.mesh, glm::dmat3(0.0), Vec3(0, 0, 1))};
+    const VelocityField velocity =
+        VelocityField::unsteady(f.mesh, std::move(samples), {0.0, 1.0, 2.0}).value();
+    EXPECT_FALSE(velocity.is_steady());
+    const ParticleTracer tracer(f.mesh, f.adjacency, velocity);
+    Particle p{Vec3(-1, -1, -1)};
+    const int steps = 8;
+    for (int i = 0; i < steps; ++i) {
+        ASSERT_EQ(tracer.step(p, i * 0.25, 0.25), StepResult::kMoved);
+    }
+    EXPECT_LT(glm::length(p.position - Vec3(-0.5, 0.0, -0.5)), 1e-6);
+    // Between samples: at t = 0.5 the field is (0.5, 0.5, 0).
+    CellId hint = kNoCell;
+    const auto mid = tracer.velocity_at(Vec3(0.0), 0.5, hint);
+    ASSERT_TRUE(mid.has_value());
+    EXPECT_LT(glm::length(*mid - Vec3(0.5, 0.5, 0.0)), 1e-6);
+}
+
+TEST(VelocityField, RejectsBadSamples) {
+    const Fixture f = grid(2);
+    const Field ok = linear_field(f.mesh, glm::dmat3(0.0), Vec3(1, 0, 0));
+    EXPECT_FALSE(VelocityField::unsteady(f.mesh, {ok, ok}, {1.0, 1.0}).ok());  // not increasing
+    EXPECT_FALSE(VelocityField::unsteady(f.mesh, {ok}, {0.0, 1.0}).ok());      // counts differ
+    EXPECT_FALSE(VelocityField::unsteady(f.mesh, {}, {}).ok());
+    const Field scalar = make_float_field("s", 1, std::vector<float>(f.mesh.num_points(), 1.0f));
+    EXPECT_FALSE(VelocityField::steady(f.mesh, scalar).ok());
 }
 
 }  // namespace

@@ -130,6 +130,56 @@ TEST(Scene, OpaqueSurfacesExtension) {
     EXPECT_NE(both.error().message.find("$.opaque[0]"), std::string::npos);
 }
 
+TEST(Scene, FlowVolumeExtension) {
+    const std::string key = R"(, "flow_volume": {"vectors": "V", "seed_center": [1, 2, 3],
+        "seed_size": [0.5, 0.25], "seed_resolution": 8, "seed_normal": [0, 0, 1], "steps": 7,
+        "dt": 0.2, "compressible": true, "split_threshold": 3, "unsteady": true,
+        "start_time": 0.5, "color": [1, 0.5, 0], "opacity": 0.4, "unit_distance": 0.1,
+        "context": true})";
+    auto scene = parse(replace(kScene, ",\n  \"time_step\": 2", key));
+    ASSERT_TRUE(scene.ok()) << scene.error().to_string();
+    ASSERT_TRUE(scene->flow_volume.has_value());
+    const FlowVolumeSpec& f = *scene->flow_volume;
+    EXPECT_EQ(f.vectors, "V");
+    EXPECT_EQ(f.seed_center, Vec3(1, 2, 3));
+    EXPECT_EQ(f.seed_height, 0.25);
+    EXPECT_EQ(f.seed_resolution, 8);
+    EXPECT_EQ(f.seed_normal, Vec3(0, 0, 1));
+    EXPECT_EQ(f.steps, 7);
+    EXPECT_TRUE(f.compressible && f.unsteady && f.context);
+    EXPECT_EQ(f.split_threshold, 3.0);
+    EXPECT_EQ(f.start_time, 0.5);
+    EXPECT_EQ(f.unit_distance, 0.1);
+    // Written and read back: the same values.
+    const auto dir = std::filesystem::temp_directory_path() / "tetrender_scene_fv_test";
+    std::filesystem::create_directories(dir);
+    ASSERT_TRUE(write_scene(*scene, dir / "fv.json").ok());
+    auto back = read_scene(dir / "fv.json");
+    std::filesystem::remove_all(dir);
+    ASSERT_TRUE(back.ok()) << back.error().to_string();
+    ASSERT_TRUE(back->flow_volume.has_value());
+    EXPECT_EQ(back->flow_volume->seed_normal, f.seed_normal);
+    EXPECT_EQ(back->flow_volume->start_time, f.start_time);
+    EXPECT_EQ(back->flow_volume->color, f.color);
+    EXPECT_EQ(back->flow_volume->dt, f.dt);
+    for (const auto& [bad, where] : std::vector<std::pair<std::string, std::string>>{
+             {R"(, "flow_volume": {"seed_center": [0, 0, 0], "seed_size": [1, 1]})",
+              "$.flow_volume.vectors"},
+             {R"(, "flow_volume": {"vectors": "V", "seed_center": [0, 0, 0], "seed_size": [1, 0]})",
+              "$.flow_volume.seed_size"},
+             {R"(, "flow_volume": {"vectors": "V", "seed_center": [0, 0, 0], "seed_size": [1, 1],
+                 "split_threshold": 1})",
+              "$.flow_volume.split_threshold"},
+             {R"(, "flow_volume": {"vectors": "V", "seed_center": [0, 0, 0], "seed_size": [1, 1],
+                 "opacity": 1})",
+              "$.flow_volume.opacity"}}) {
+        auto rejected = parse(replace(kScene, ",\n  \"time_step\": 2", bad));
+        ASSERT_FALSE(rejected.ok()) << bad;
+        EXPECT_NE(rejected.error().message.find(where), std::string::npos)
+            << rejected.error().message;
+    }
+}
+
 TEST(Scene, WriteThenReadGivesTheSameScene) {
     auto scene = parse(kScene);
     ASSERT_TRUE(scene.ok());
