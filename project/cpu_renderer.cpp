@@ -1,5 +1,6 @@
 #include <core/parallel.h>
 #include <project/cpu_renderer.h>
+#include <project/tet_projection.h>
 
 #include <algorithm>
 #include <atomic>
@@ -55,13 +56,6 @@ ScreenBox screen_box(const TetMesh& mesh, CellId t, const CameraFrame& camera) {
 
 // --- Shirley-Tuchman projection (the exp-texture integrator, as in the paper's section 3.2) ---
 
-// Attributes at a vertex of the projected tet's triangles: screen position, thickness (u), the
-// scalar at the front and back of the ray segment, and the ray parameter of the front.
-struct StVertex {
-    double x, y;
-    double thickness, s_front, s_back, t_front;
-};
-
 // Edge function of the directed screen edge a -> b at p, computed from the lexicographically
 // smaller endpoint so that an edge shared by two triangles gives exactly opposite values.
 double edge_function(const StVertex& a, const StVertex& b, double px, double py) {
@@ -70,10 +64,6 @@ double edge_function(const StVertex& a, const StVertex& b, double px, double py)
     const StVertex& q = swap ? a : b;
     const double e = (q.x - p.x) * (py - p.y) - (q.y - p.y) * (px - p.x);
     return swap ? -e : e;
-}
-
-double cross2(double ax, double ay, double bx, double by, double cx, double cy) {
-    return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
 }
 
 }  // namespace
@@ -145,22 +135,13 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
             ScreenBox b = boxes[index];
             b.x0 = std::max(b.x0, px0), b.y0 = std::max(b.y0, py0);
             b.x1 = std::min(b.x1, px1), b.y1 = std::min(b.y1, py1);
-            const Tet& v = mesh.tet(t);
             // Face planes n . x = w (outward), the scalar's gradient.
-            Vec3 normals[4];
-            double offsets[4];
-            for (int k = 0; k < 4; ++k) {
-                const Vec3& a = mesh.point(v[kTetFaceVertices[k][0]]);
-                normals[k] = glm::cross(mesh.point(v[kTetFaceVertices[k][1]]) - a,
-                                        mesh.point(v[kTetFaceVertices[k][2]]) - a);
-                offsets[k] = glm::dot(normals[k], a);
-            }
-            const Vec3& p0 = mesh.point(v[0]);
-            const double s0 = in.scalar[v[0]];
-            const glm::dmat3 edges(mesh.point(v[1]) - p0, mesh.point(v[2]) - p0,
-                                   mesh.point(v[3]) - p0);
-            const Vec3 ds(in.scalar[v[1]] - s0, in.scalar[v[2]] - s0, in.scalar[v[3]] - s0);
-            const Vec3 gradient = glm::inverse(glm::transpose(edges)) * ds;
+            const TetPlanes planes = tet_planes(mesh, in.scalar, t);
+            const Vec3* normals = planes.normals;
+            const double* offsets = planes.offsets;
+            const Vec3& p0 = planes.p0;
+            const double s0 = planes.s0;
+            const Vec3& gradient = planes.gradient;
             // Perspective: every ray starts at the eye, so the numerators are per cell.
             double eye_num[4] = {0, 0, 0, 0};
             double s_eye = 0;
@@ -169,9 +150,6 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                     eye_num[k] = offsets[k] - glm::dot(normals[k], camera.eye());
                 s_eye = s0 + glm::dot(gradient, camera.eye() - p0);
             }
-            auto scalar_at = [&](const Ray& ray, double t) {
-                return s0 + glm::dot(gradient, ray.origin + t * ray.direction - p0);
-            };
             // The exact segment of pixel (x, y)'s ray through this cell, clipped at the eye and
             // at opaque depth, shaded and composited. A ray in the plane of a face shared by
             // two cells belongs to the one whose outward normal is "positive".
@@ -208,97 +186,12 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
             if (shirley_tuchman && !straddles[index]) {
                 // Project, classify (3 or 4 triangles around the thick vertex), rasterize with
                 // thickness and the front and back scalars interpolated across the triangles.
-                StVertex corners[4];
-                for (int k = 0; k < 4; ++k) {
-                    const Vec3& world = mesh.point(v[k]);
-                    const Vec3 q = camera.project(world);
-                    const Ray r = camera.ray(q.x, q.y);
-                    const double t = glm::dot(world - r.origin, r.direction);
-                    corners[k] = {q.x, q.y, 0.0, in.scalar[v[k]], in.scalar[v[k]], t};
-                }
-                // Convex hull of the four projected corners.
-                int hull[4], n = 0;
-                {
-                    int order4[4] = {0, 1, 2, 3};
-                    std::sort(order4, order4 + 4, [&](int a, int c) {
-                        return corners[a].x != corners[c].x ? corners[a].x < corners[c].x
-                                                            : corners[a].y < corners[c].y;
-                    });
-                    int chain[8], m = 0;
-                    for (int i = 0; i < 4; ++i) {
-                        while (m >= 2 && cross2(corners[chain[m - 2]].x, corners[chain[m - 2]].y,
-                                                corners[chain[m - 1]].x, corners[chain[m - 1]].y,
-                                                corners[order4[i]].x, corners[order4[i]].y) <= 0) {
-                            --m;
-                        }
-                        chain[m++] = order4[i];
-                    }
-                    for (int i = 2, lower = m + 1; i >= 0; --i) {
-                        while (m >= lower &&
-                               cross2(corners[chain[m - 2]].x, corners[chain[m - 2]].y,
-                                      corners[chain[m - 1]].x, corners[chain[m - 1]].y,
-                                      corners[order4[i]].x, corners[order4[i]].y) <= 0) {
-                            --m;
-                        }
-                        chain[m++] = order4[i];
-                    }
-                    n = m - 1;
-                    for (int i = 0; i < n && i < 4; ++i) hull[i] = chain[i];
-                }
-                if (n < 3) continue;  // no area on screen
-                // The thick vertex: where the ray meets the cell's longest chord. Class 1
-                // (a corner projects inside the other three): that corner and the opposite
-                // face. Class 2 (a quadrilateral): the two opposite edges whose projections
-                // are its diagonals.
-                double ta = 0, tb = 0, tx = 0, ty = 0;
-                Ray thick_ray;
-                bool ok = true;
-                if (n == 3) {
-                    int inner = 0;
-                    for (int k = 0; k < 4; ++k) {
-                        if (k != hull[0] && k != hull[1] && k != hull[2]) inner = k;
-                    }
-                    tx = corners[inner].x, ty = corners[inner].y;
-                    thick_ray = camera.ray(tx, ty);
-                    ta = glm::dot(mesh.point(v[inner]) - thick_ray.origin, thick_ray.direction);
-                    const double den = glm::dot(normals[inner], thick_ray.direction);
-                    ok = den != 0;
-                    if (ok)
-                        tb = (offsets[inner] - glm::dot(normals[inner], thick_ray.origin)) / den;
-                } else {
-                    const StVertex &a = corners[hull[0]], &c = corners[hull[2]];
-                    const StVertex &b2 = corners[hull[1]], &d = corners[hull[3]];
-                    const double den = (c.x - a.x) * (d.y - b2.y) - (c.y - a.y) * (d.x - b2.x);
-                    ok = den != 0;
-                    if (ok) {
-                        const double u =
-                            ((b2.x - a.x) * (d.y - b2.y) - (b2.y - a.y) * (d.x - b2.x)) / den;
-                        tx = a.x + u * (c.x - a.x), ty = a.y + u * (c.y - a.y);
-                        thick_ray = camera.ray(tx, ty);
-                        // Ray parameter of the closest approach to each 3D edge.
-                        auto on_line = [&](const Vec3& p, const Vec3& q) {
-                            const Vec3 e = q - p, w0 = thick_ray.origin - p;
-                            const double A = glm::dot(thick_ray.direction, thick_ray.direction);
-                            const double B = glm::dot(thick_ray.direction, e);
-                            const double C = glm::dot(e, e);
-                            const double denom = A * C - B * B;
-                            if (denom == 0)
-                                return glm::dot(p - thick_ray.origin, thick_ray.direction);
-                            return (B * glm::dot(e, w0) - C * glm::dot(thick_ray.direction, w0)) /
-                                   denom;
-                        };
-                        ta = on_line(mesh.point(v[hull[0]]), mesh.point(v[hull[2]]));
-                        tb = on_line(mesh.point(v[hull[1]]), mesh.point(v[hull[3]]));
-                    }
-                }
-                if (!ok) continue;
-                const double t_front = std::min(ta, tb), t_back = std::max(ta, tb);
-                const StVertex thick{tx,
-                                     ty,
-                                     t_back - t_front,
-                                     scalar_at(thick_ray, t_front),
-                                     scalar_at(thick_ray, t_back),
-                                     t_front};
+                StProjection st;
+                if (!shirley_tuchman_projection(mesh, in.scalar, t, planes, camera, st)) continue;
+                const StVertex* corners = st.corners;
+                const int* hull = st.hull;
+                const int n = st.num_hull;
+                const StVertex& thick = st.thick;
                 on_edges.clear();
                 for (int e = 0; e < n; ++e) {
                     StVertex tri[3] = {thick, corners[hull[e]], corners[hull[(e + 1) % n]]};

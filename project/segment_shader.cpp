@@ -77,6 +77,20 @@ SegmentShader::SegmentShader(const TransferFunction& tf, Integrator integrator, 
     }
 }
 
+SegmentShaderTables SegmentShader::tables() const {
+    SegmentShaderTables t;
+    t.exp_table = exp_table_;
+    t.exp_size = exp_table_.empty() ? 0 : kExpSize;
+    t.preint_table = preint_table_;
+    t.pre_scalars = preint_table_.empty() ? 0 : kPreScalars;
+    t.pre_lengths = preint_table_.empty() ? 0 : kPreLengths;
+    t.s_lo = s_lo_;
+    t.s_hi = s_hi_;
+    t.max_length = max_length_;
+    t.kappa_max = kappa_max_;
+    return t;
+}
+
 ShadedSegment SegmentShader::shade(double s_front, double s_back, double length) const {
     switch (integrator_) {
         case Integrator::kExpTexture:

@@ -15,6 +15,7 @@
 #include <project/transfer_function.h>
 
 #include <optional>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -24,6 +25,24 @@ enum class Integrator { kExpTexture, kPreintegrated, kExact };
 
 std::string_view integrator_name(Integrator integrator);  // "exp-texture", ...
 std::optional<Integrator> parse_integrator(std::string_view name);
+
+// The lookup tables of a SegmentShader as they are, for renderers that sample them elsewhere
+// (the OpenGL renderer's textures). Texel centres sit on the grid points below.
+struct SegmentShaderTables {
+    // kExpTexture: exp_size x exp_size floats; index j * exp_size + i holds 1 - exp(-u v) with
+    // u = max_length * i / (exp_size - 1), v = kappa_max * j / (exp_size - 1). Empty otherwise.
+    std::span<const float> exp_table;
+    int exp_size = 0;
+    // kPreintegrated: premultiplied RGBA at ((f * pre_scalars + b) * pre_lengths + l) * 4 for
+    // front scalar s_lo + (s_hi - s_lo) * f / (pre_scalars - 1), back scalar likewise with b,
+    // length max_length * l / (pre_lengths - 1). Empty otherwise.
+    std::span<const float> preint_table;
+    int pre_scalars = 0;
+    int pre_lengths = 0;
+    double s_lo = 0, s_hi = 1;  // scalar range of the tables
+    double max_length = 1;      // the longest segment the tables cover
+    double kappa_max = 0;       // largest extinction (the exp texture's v range)
+};
 
 struct ShadedSegment {
     Vec3f color;  // premultiplied
@@ -40,6 +59,7 @@ class SegmentShader {
     ShadedSegment shade(double s_front, double s_back, double length) const;
 
     Integrator integrator() const { return integrator_; }
+    SegmentShaderTables tables() const;
 
   private:
     ShadedSegment exact(double s_front, double s_back, double length) const;

@@ -1,0 +1,711 @@
+// tetrender-view: the interactive viewer (GLFW window, OpenGL 3.3 core, Dear ImGui panel), and
+// its headless screenshot mode for tests and benchmarks.
+#include <apps/cli_common.h>
+#include <apps/viewer/sort_worker.h>
+#include <apps/viewer/viewer_scene.h>
+#include <core/image.h>
+#include <io/write_image.h>
+#include <project/colormap.h>
+#include <project/gl/gl_renderer.h>
+
+#include <CLI/CLI.hpp>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui/backends/imgui_impl_glfw.h>
+#include <imgui/backends/imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tr::viewer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kKeys =
+    "keys: left drag rotate | right drag or wheel zoom | middle drag or shift+left drag pan | "
+    "r reset view | s screenshot | p panel on/off | ? or h this list | Esc quit";
+
+struct Args {
+    std::string input;
+    std::string scalar;
+    std::string screenshot;
+    int frames = 1;
+    double orbit = 0;
+    std::string size;
+    std::string integrator = "exp-texture";
+    std::string sort = "auto";
+    std::string colormap;
+    double opacity = 0;
+    double unit_distance = 0;
+    bool panel_in_screenshot = false;
+    int exit_after_frames = 0;  // interactive mode: quit after this many frames (tests)
+};
+
+std::string glfw_error_text;
+void on_glfw_error(int, const char* description) { glfw_error_text = description; }
+
+double scroll_accumulated = 0;
+void on_scroll(GLFWwindow*, double, double dy) { scroll_accumulated += dy; }
+
+Vec3 rotate_about(const Vec3& v, const Vec3& axis, double angle) {
+    const Vec3 k = glm::normalize(axis);
+    const double c = std::cos(angle), s = std::sin(angle);
+    return v * c + glm::cross(k, v) * s + k * glm::dot(k, v) * (1 - c);
+}
+
+// Rolling means of the last frames, for the panel.
+struct Rolling {
+    std::deque<double> values;
+    void add(double v) {
+        values.push_back(v);
+        if (values.size() > 30) values.pop_front();
+    }
+    double mean() const {
+        double sum = 0;
+        for (double v : values) sum += v;
+        return values.empty() ? 0 : sum / static_cast<double>(values.size());
+    }
+};
+
+class Viewer {
+  public:
+    Viewer(ViewerScene& scene, GLFWwindow* window, gl::GlTetRenderer& renderer,
+           Integrator integrator)
+        : vs_(scene),
+          window_(window),
+          renderer_(renderer),
+          worker_(scene.setup.mesh, scene.setup.adjacency),
+          camera_(scene.scene.camera),
+          home_(scene.scene.camera),
+          method_(scene.setup.method),
+          integrator_(integrator) {
+        renderer_.set_mesh(&vs_.setup.mesh, vs_.scalar);
+        std::vector<OpaqueSurface> opaque;
+        for (std::size_t i = 0; i < vs_.opaque.size(); ++i)
+            opaque.push_back({&vs_.opaque[i], vs_.opaque_colors[i]});
+        renderer_.set_opaque(opaque);
+        renderer_.set_transfer_function(vs_.scene.transfer_function, integrator_, vs_.longest_edge);
+    }
+
+    // Headless: N frames along an orbit, the last one written. Returns the exit code.
+    int screenshot(const Args& args) {
+        const int frames = std::max(args.frames, 1);
+        const CameraFrame start(home_, vs_.scene.width, vs_.scene.height);
+        const Vec3 axis = start.up();
+        double frame_ms = 0, sort_ms = 0, classify_ms = 0, raster_ms = 0;
+        std::size_t sorts = 0, drawn = 0;
+        std::uint64_t last_seen = 0;
+        for (int i = 0; i < frames; ++i) {
+            const auto frame_start = Clock::now();
+            const double angle = glm::radians(args.orbit) * (i + 1) / frames;
+            camera_ = home_;
+            camera_.position =
+                home_.focal_point + rotate_about(home_.position - home_.focal_point, axis, angle);
+            camera_.view_up = rotate_about(home_.view_up, axis, angle);
+            const bool last = i + 1 == frames;
+            const SortedOrder order = current_order(last);
+            if (order.view_id != last_seen) {
+                last_seen = order.view_id;
+                sort_ms += order.stats.milliseconds;
+                ++sorts;
+            }
+            const CameraFrame frame(camera_, vs_.scene.width, vs_.scene.height);
+            const gl::GlFrameStats stats =
+                renderer_.render(frame, *order.order, vs_.scene.background);
+            classify_ms += stats.classify_ms;
+            raster_ms += stats.raster_ms;
+            drawn = stats.cells_drawn;
+            if (last && args.panel_in_screenshot) {
+                renderer_.bind_framebuffer();
+                last_stats_ = stats;
+                frame_ms_.add(apps::ms_since(frame_start));
+                // Auto-sized windows appear on ImGui's second frame: lay out twice first.
+                draw_ui(false);
+                draw_ui(false);
+                draw_ui();
+            }
+            frame_ms += apps::ms_since(frame_start);
+        }
+        const Image image = renderer_.read_image();
+        const Status written = write_image(image, args.screenshot);
+        if (!written.ok()) return apps::report_error(written.error());
+        std::fprintf(stderr,
+                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), sort %.1f ms mean "
+                     "(%zu sorts), classify %.1f ms, raster %.1f ms, %zu cells (%zu drawn), "
+                     "%dx%d, %s\n",
+                     frames, frame_ms / frames, 1000.0 * frames / frame_ms,
+                     sorts ? sort_ms / static_cast<double>(sorts) : 0.0, sorts,
+                     classify_ms / frames, raster_ms / frames, vs_.setup.mesh.num_real_tets(),
+                     drawn, vs_.scene.width, vs_.scene.height, integrator_name(integrator_).data());
+        return apps::kExitOk;
+    }
+
+    int interactive(int exit_after_frames) {
+        glfwSetScrollCallback(window_, on_scroll);
+        std::printf("%s\n", kKeys);
+        glfwGetCursorPos(window_, &mouse_x_, &mouse_y_);
+        int frames = 0;
+        while (!glfwWindowShouldClose(window_)) {
+            if (exit_after_frames > 0 && frames++ >= exit_after_frames) break;
+            const auto frame_start = Clock::now();
+            glfwPollEvents();
+            handle_input();
+            // The pre-integrated table takes 0.1-0.3 s: rebuilt when a drag ends, not during it.
+            if (tf_dirty_ && (dragging_ < 0 || integrator_ == Integrator::kExpTexture)) {
+                rebuild_transfer_function();
+            }
+            int fw = 0, fh = 0;
+            glfwGetFramebufferSize(window_, &fw, &fh);
+            if (fw <= 0 || fh <= 0) {  // minimized
+                glfwWaitEvents();
+                continue;
+            }
+            const SortedOrder order = current_order(false);
+            // The volume is drawn again only when something it shows changed; the panel is
+            // drawn every frame so that it stays responsive.
+            const VolumeKey key{camera_, order.view_id, tf_version_, fw, fh};
+            if (!drawn_ || !(key == *drawn_)) {
+                const CameraFrame frame(camera_, fw, fh);
+                last_stats_ = renderer_.render(frame, *order.order, vs_.scene.background);
+                drawn_ = key;
+            }
+            if (screenshot_requested_) {
+                screenshot_requested_ = false;
+                const std::string name =
+                    "tetrender-view-" + std::to_string(++screenshots_) + ".png";
+                const Status written = write_image(renderer_.read_image(), name);
+                if (written.ok()) {
+                    std::printf("screenshot: %s\n", name.c_str());
+                } else {
+                    std::fprintf(stderr, "tetrender-view: %s\n", written.error().message.c_str());
+                }
+            }
+            renderer_.blit_to_default(fw, fh);
+            draw_ui();
+            glfwSwapBuffers(window_);
+            frame_ms_.add(apps::ms_since(frame_start));
+            // Idle (nothing moving, the sort done): wait for events instead of spinning.
+            if (order_current_ && !tf_dirty_) glfwWaitEventsTimeout(0.1);
+        }
+        return apps::kExitOk;
+    }
+
+  private:
+    // Asks the worker for the current view's order; returns the latest finished one (waiting
+    // only when there is none yet, or when `exact` asks for this very view's).
+    SortedOrder current_order(bool exact) {
+        const bool changed = !requested_ || camera_.position != requested_->position ||
+                             camera_.focal_point != requested_->focal_point ||
+                             camera_.view_up != requested_->view_up || method_ != requested_method_;
+        if (changed) {
+            ++view_id_;
+            requested_ = camera_;
+            requested_method_ = method_;
+            const CameraFrame frame(camera_, 16, 16);
+            worker_.request(SortView::from_camera(frame), method_, view_id_);
+        }
+        std::optional<SortedOrder> latest = exact ? std::nullopt : worker_.latest();
+        if (!latest) latest = worker_.wait_for(view_id_);
+        if (latest->view_id != last_order_id_) {
+            last_order_id_ = latest->view_id;
+            sort_ms_ = latest->stats.milliseconds;
+        }
+        order_current_ = latest->view_id == view_id_;
+        return *latest;
+    }
+
+    void handle_input() {
+        double x = 0, y = 0;
+        glfwGetCursorPos(window_, &x, &y);
+        const double dx = x - mouse_x_, dy = y - mouse_y_;
+        mouse_x_ = x, mouse_y_ = y;
+        const ImGuiIO& io = ImGui::GetIO();
+        if (!io.WantCaptureKeyboard) {
+            auto pressed = [&](int key) {
+                const bool down = glfwGetKey(window_, key) == GLFW_PRESS;
+                const bool was = keys_down_[key];
+                keys_down_[key] = down;
+                return down && !was;
+            };
+            if (pressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window_, GLFW_TRUE);
+            if (pressed(GLFW_KEY_R)) camera_ = home_;
+            if (pressed(GLFW_KEY_S)) screenshot_requested_ = true;
+            if (pressed(GLFW_KEY_P)) show_panel_ = !show_panel_;
+            const bool shift = glfwGetKey(window_, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+                               glfwGetKey(window_, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+            // '?' is shift + slash on most layouts.
+            if ((pressed(GLFW_KEY_SLASH) && shift) || pressed(GLFW_KEY_H)) {
+                show_keys_ = !show_keys_;
+                std::printf("%s\n", kKeys);
+            }
+        }
+        if (io.WantCaptureMouse) {
+            scroll_accumulated = 0;
+            return;
+        }
+        const bool left = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+        const bool right = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        const bool middle = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+        const bool shift = glfwGetKey(window_, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+        int ww = 1, wh = 1;
+        glfwGetWindowSize(window_, &ww, &wh);
+        const CameraFrame frame(camera_, std::max(ww, 1), std::max(wh, 1));
+        const Vec3 offset = camera_.position - camera_.focal_point;
+        const double distance = glm::length(offset);
+        if ((left && shift) || middle) {
+            const double scale =
+                camera_.parallel
+                    ? 2 * camera_.parallel_scale / wh
+                    : 2 * distance * std::tan(glm::radians(camera_.view_angle) / 2) / wh;
+            const Vec3 shift_by = (-dx * frame.right() + dy * frame.up()) * scale;
+            camera_.position += shift_by;
+            camera_.focal_point += shift_by;
+        } else if (left && (dx != 0 || dy != 0)) {
+            // Trackball: horizontal motion about the view's up, vertical about its right.
+            Vec3 o = rotate_about(offset, frame.up(), -dx * 0.01);
+            Vec3 up = frame.up();
+            const Vec3 right = glm::normalize(glm::cross(-o, up));
+            o = rotate_about(o, right, -dy * 0.01);
+            up = rotate_about(up, right, -dy * 0.01);
+            camera_.position = camera_.focal_point + o;
+            camera_.view_up = up;
+        }
+        double zoom = 0;
+        if (right) zoom += dy * 0.01;
+        zoom -= scroll_accumulated * 0.1;
+        scroll_accumulated = 0;
+        if (zoom != 0) {
+            const double factor = std::exp(zoom);
+            camera_.position = camera_.focal_point + offset * factor;
+            camera_.parallel_scale *= factor;
+        }
+    }
+
+    void rebuild_transfer_function() {
+        tf_dirty_ = false;
+        auto tf = make_transfer_function(vs_.edit);
+        if (!tf.ok()) {
+            status_ = tf.error().message;
+            return;
+        }
+        vs_.scene.transfer_function = std::move(tf).value();
+        ++tf_version_;
+        renderer_.set_transfer_function(vs_.scene.transfer_function, integrator_, vs_.longest_edge);
+    }
+
+    // The opacity curve: points dragged with the left button, a double click adds one, a right
+    // click removes one (two stay).
+    void opacity_editor() {
+        TransferEdit& e = vs_.edit;
+        const ImVec2 size(300, 120);
+        const ImVec2 p0 = ImGui::GetCursorScreenPos();
+        ImGui::InvisibleButton(
+            "opacity_curve", size,
+            ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+        ImDrawList* draw = ImGui::GetWindowDrawList();
+        const double span = e.hi > e.lo ? e.hi - e.lo : 1.0;
+        // Colour strip along the bottom, the curve above it.
+        const int strips = 60;
+        for (int i = 0; i < strips; ++i) {
+            const double s = e.lo + span * (i + 0.5) / strips;
+            const Vec3 c = vs_.scene.transfer_function.color(s);
+            draw->AddRectFilled(
+                ImVec2(p0.x + size.x * i / strips, p0.y + size.y - 10),
+                ImVec2(p0.x + size.x * (i + 1) / strips, p0.y + size.y),
+                ImGui::ColorConvertFloat4ToU32(ImVec4(float(c.x), float(c.y), float(c.z), 1.0f)));
+        }
+        draw->AddRect(p0, ImVec2(p0.x + size.x, p0.y + size.y), IM_COL32(200, 200, 200, 255));
+        const float plot_h = size.y - 12;
+        auto to_screen = [&](const OpacityPoint& p) {
+            return ImVec2(p0.x + float((p.s - e.lo) / span) * size.x,
+                          p0.y + plot_h * (1.0f - float(p.a)));
+        };
+        for (std::size_t i = 0; i + 1 < e.opacity.size(); ++i) {
+            draw->AddLine(to_screen(e.opacity[i]), to_screen(e.opacity[i + 1]),
+                          IM_COL32(255, 255, 255, 255), 2.0f);
+        }
+        const ImVec2 mouse = ImGui::GetIO().MousePos;
+        auto nearest = [&]() {
+            int best = -1;
+            float best_d = 10 * 10;
+            for (std::size_t i = 0; i < e.opacity.size(); ++i) {
+                const ImVec2 q = to_screen(e.opacity[i]);
+                const float d =
+                    (q.x - mouse.x) * (q.x - mouse.x) + (q.y - mouse.y) * (q.y - mouse.y);
+                if (d < best_d) best_d = d, best = static_cast<int>(i);
+            }
+            return best;
+        };
+        auto from_screen = [&](ImVec2 m) {
+            const double s = e.lo + std::clamp((m.x - p0.x) / size.x, 0.0f, 1.0f) * span;
+            const double a = std::clamp(1.0 - (m.y - p0.y) / plot_h, 0.0, 0.99);
+            return OpacityPoint{s, a};
+        };
+        if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
+            const OpacityPoint p = from_screen(mouse);
+            auto at = std::lower_bound(e.opacity.begin(), e.opacity.end(), p.s,
+                                       [](const OpacityPoint& q, double s) { return q.s < s; });
+            e.opacity.insert(at, p);
+            tf_dirty_ = true;
+        } else if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right)) {
+            const int i = nearest();
+            if (i >= 0 && e.opacity.size() > 2) {
+                e.opacity.erase(e.opacity.begin() + i);
+                tf_dirty_ = true;
+            }
+        } else if (ImGui::IsItemActivated()) {
+            dragging_ = nearest();
+        }
+        if (dragging_ >= 0 && ImGui::IsItemActive()) {
+            OpacityPoint p = from_screen(mouse);
+            const std::size_t i = static_cast<std::size_t>(dragging_);
+            const double lo = i > 0 ? e.opacity[i - 1].s : e.lo;
+            const double hi = i + 1 < e.opacity.size() ? e.opacity[i + 1].s : e.hi;
+            p.s = std::clamp(p.s, lo, hi);
+            if (p.s != e.opacity[i].s || p.a != e.opacity[i].a) {
+                e.opacity[i] = p;
+                tf_dirty_ = true;
+            }
+        } else {
+            dragging_ = -1;
+        }
+        for (const OpacityPoint& p : e.opacity)
+            draw->AddCircleFilled(to_screen(p), 4.0f, IM_COL32(255, 200, 60, 255));
+    }
+
+    void panel() {
+        ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowBgAlpha(0.85f);
+        ImGui::Begin("tetrender-view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+        ImGui::Text("%s", vs_.scene.mesh.filename().string().c_str());
+        ImGui::Text("%zu cells%s", vs_.setup.mesh.num_real_tets(),
+                    vs_.setup.convexified ? " (+ convexification for the sort)" : "");
+        // Scalar array.
+        if (ImGui::BeginCombo("scalar", vs_.scalar_name.c_str())) {
+            for (const std::string& name : vs_.arrays) {
+                if (ImGui::Selectable(name.c_str(), name == vs_.scalar_name) &&
+                    name != vs_.scalar_name) {
+                    const Status s = select_scalar(vs_, name);
+                    if (s.ok()) {
+                        renderer_.set_scalar(vs_.scalar);
+                        tf_dirty_ = true;
+                        status_.clear();
+                    } else {
+                        status_ = s.error().message;
+                    }
+                }
+            }
+            ImGui::EndCombo();
+        }
+        // Colour map.
+        const std::string current = vs_.edit.colormap.empty() ? "scene" : vs_.edit.colormap;
+        if (ImGui::BeginCombo("colour map", current.c_str())) {
+            if (!vs_.edit.scene_colors.empty() &&
+                ImGui::Selectable("scene", vs_.edit.colormap.empty())) {
+                vs_.edit.colormap.clear();
+                tf_dirty_ = true;
+            }
+            for (const std::string& name : colormap_names()) {
+                if (ImGui::Selectable(name.c_str(), name == vs_.edit.colormap)) {
+                    vs_.edit.colormap = name;
+                    tf_dirty_ = true;
+                }
+            }
+            ImGui::EndCombo();
+        }
+        ImGui::Text("opacity (drag points; double-click adds, right-click removes)");
+        opacity_editor();
+        float unit = static_cast<float>(vs_.edit.unit_distance);
+        const double diag = std::max(vs_.setup.mesh.bounds().diagonal(), 1e-30);
+        if (ImGui::SliderFloat("unit distance", &unit, float(diag * 1e-3), float(diag * 10), "%.4g",
+                               ImGuiSliderFlags_Logarithmic)) {
+            vs_.edit.unit_distance = std::max(static_cast<double>(unit), 1e-30);
+            tf_dirty_ = true;
+        }
+        // Sort and integrator.
+        const SortMethod methods[] = {SortMethod::kMpvo, SortMethod::kMpvoNonConvex,
+                                      SortMethod::kCentroid};
+        if (ImGui::BeginCombo("sort", sort_method_name(method_).data())) {
+            for (SortMethod m : methods) {
+                if (ImGui::Selectable(sort_method_name(m).data(), m == method_)) method_ = m;
+            }
+            ImGui::EndCombo();
+        }
+        if (ImGui::BeginCombo("integrator", integrator_name(integrator_).data())) {
+            for (Integrator i : {Integrator::kExpTexture, Integrator::kPreintegrated}) {
+                if (ImGui::Selectable(integrator_name(i).data(), i == integrator_) &&
+                    i != integrator_) {
+                    integrator_ = i;
+                    tf_dirty_ = true;
+                }
+            }
+            ImGui::EndCombo();
+        }
+        ImGui::Separator();
+        const double frame = frame_ms_.mean();
+        ImGui::Text("frame %.1f ms (%.1f fps)", frame, frame > 0 ? 1000.0 / frame : 0.0);
+        ImGui::Text("sort %.1f ms (%s)  classify %.1f ms  raster %.1f ms", sort_ms_,
+                    order_current_ ? "current" : "previous view", last_stats_.classify_ms,
+                    last_stats_.raster_ms);
+        ImGui::Text("cells %zu, drawn %zu", last_stats_.cells, last_stats_.cells_drawn);
+        if (!status_.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", status_.c_str());
+        ImGui::TextDisabled("? lists the keys");
+        ImGui::End();
+    }
+
+    // One ImGui frame; drawn into the bound framebuffer unless `submit` is false (layout only).
+    void draw_ui(bool submit = true) {
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        if (show_panel_) panel();
+        if (show_keys_) {
+            ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetIO().DisplaySize.y - 40),
+                                    ImGuiCond_Always);
+            ImGui::Begin("keys", nullptr,
+                         ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize);
+            ImGui::TextUnformatted(kKeys);
+            ImGui::End();
+        }
+        ImGui::Render();
+        if (submit) ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    }
+
+    ViewerScene& vs_;
+    GLFWwindow* window_;
+    gl::GlTetRenderer& renderer_;
+    SortWorker worker_;
+    Camera camera_, home_;
+    std::optional<Camera> requested_;
+    SortMethod method_, requested_method_ = SortMethod::kMpvo;
+    Integrator integrator_;
+    std::uint64_t view_id_ = 0, last_order_id_ = 0;
+    bool order_current_ = false;
+    double sort_ms_ = 0;
+    gl::GlFrameStats last_stats_;
+    Rolling frame_ms_;
+    bool tf_dirty_ = false, screenshot_requested_ = false, show_panel_ = true, show_keys_ = false;
+    int screenshots_ = 0;
+    int dragging_ = -1;
+    double mouse_x_ = 0, mouse_y_ = 0;
+    bool keys_down_[GLFW_KEY_LAST + 1] = {};
+    std::string status_;
+    // What the last volume frame showed.
+    struct VolumeKey {
+        Camera camera;
+        std::uint64_t order_id;
+        int tf_version, width, height;
+        bool operator==(const VolumeKey& o) const {
+            return camera.position == o.camera.position &&
+                   camera.focal_point == o.camera.focal_point &&
+                   camera.view_up == o.camera.view_up &&
+                   camera.parallel_scale == o.camera.parallel_scale && order_id == o.order_id &&
+                   tf_version == o.tf_version && width == o.width && height == o.height;
+        }
+    };
+    std::optional<VolumeKey> drawn_;
+    int tf_version_ = 0;
+};
+
+// What the display offers when a 3.3 core context cannot be had: a default context's version.
+std::string available_gl() {
+    glfwDefaultWindowHints();
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+    GLFWwindow* probe = glfwCreateWindow(16, 16, "probe", nullptr, nullptr);
+    if (!probe) return "no OpenGL context at all";
+    glfwMakeContextCurrent(probe);
+    using GetString = const unsigned char* (*)(unsigned int);
+    auto get_string = reinterpret_cast<GetString>(glfwGetProcAddress("glGetString"));
+    std::string text = "?";
+    if (get_string) {
+        const auto* version = reinterpret_cast<const char*>(get_string(0x1F02));   // GL_VERSION
+        const auto* renderer = reinterpret_cast<const char*>(get_string(0x1F01));  // GL_RENDERER
+        text =
+            std::string("OpenGL ") + (version ? version : "?") + ", " + (renderer ? renderer : "?");
+    }
+    glfwMakeContextCurrent(nullptr);
+    glfwDestroyWindow(probe);
+    return text;
+}
+
+int fail(const std::string& message) {
+    std::fprintf(stderr, "tetrender-view: %s\n", message.c_str());
+    return apps::kExitError;
+}
+
+int run(const Args& args) {
+    ViewerOptions options;
+    options.input = args.input;
+    options.scalar = args.scalar;
+    options.colormap = args.colormap;
+    options.max_opacity = args.opacity;
+    options.unit_distance = args.unit_distance;
+    const auto integrator = parse_integrator(args.integrator);
+    if (!integrator || *integrator == Integrator::kExact) {
+        std::fprintf(stderr,
+                     "tetrender-view: unknown --integrator '%s' (exp-texture, "
+                     "preintegrated)\n",
+                     args.integrator.c_str());
+        return apps::kExitUsage;
+    }
+    const auto method = parse_sort_method(args.sort);
+    if (!method) {
+        std::fprintf(stderr,
+                     "tetrender-view: unknown --sort '%s' (auto, mpvo, mpvonc, exact, "
+                     "centroid)\n",
+                     args.sort.c_str());
+        return apps::kExitUsage;
+    }
+    options.sort = *method;
+    if (!args.size.empty()) {
+        if (!apps::parse_image_size(args.size, options.width, options.height)) {
+            std::fprintf(stderr,
+                         "tetrender-view: --size must be WxH with sides in [1, %d], not %s\n",
+                         kMaxImageSide, args.size.c_str());
+            return apps::kExitUsage;
+        }
+        options.size_given = true;
+    }
+    if (!args.colormap.empty()) {
+        const auto names = colormap_names();
+        if (std::find(names.begin(), names.end(), args.colormap) == names.end()) {
+            std::fprintf(stderr, "tetrender-view: unknown --colormap '%s'\n",
+                         args.colormap.c_str());
+            return apps::kExitUsage;
+        }
+    }
+    const bool headless = !args.screenshot.empty();
+
+    auto loaded = load_viewer_scene(options);
+    if (!loaded.ok()) return apps::report_error(loaded.error());
+    ViewerScene vs = std::move(loaded).value();
+    if (!vs.setup.note.empty())
+        std::fprintf(stderr, "tetrender-view: note: %s\n", vs.setup.note.c_str());
+
+    const char* display = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    if ((!display || !*display) && (!wayland || !*wayland)) {
+        return fail("no display: run under xvfb-run or set DISPLAY");
+    }
+    glfwSetErrorCallback(on_glfw_error);
+    if (!glfwInit()) {
+        return fail("no display: run under xvfb-run or set DISPLAY (GLFW: " + glfw_error_text +
+                    ")");
+    }
+    struct Terminate {
+        ~Terminate() {
+#if !defined(__SANITIZE_ADDRESS__)
+            glfwTerminate();
+#endif
+            // Under AddressSanitizer the display stays open until exit: closing it unloads
+            // Mesa's driver, and LeakSanitizer could then not name the module of the driver's
+            // own never-freed allocations (scripts/lsan.supp suppresses them by module).
+        }
+    } terminate;
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_VISIBLE, headless ? GLFW_FALSE : GLFW_TRUE);
+    GLFWwindow* window = glfwCreateWindow(
+        vs.scene.width, vs.scene.height,
+        ("tetrender-view: " + vs.scene.mesh.filename().string()).c_str(), nullptr, nullptr);
+    if (!window) {
+        const std::string why = glfw_error_text;
+        return fail("no OpenGL 3.3 core context (GLFW: " + why + "); the display offers " +
+                    available_gl());
+    }
+    glfwMakeContextCurrent(window);
+    glfwSwapInterval(headless ? 0 : 1);
+    auto info = gl::check_gl_context();
+    if (!info.ok()) {
+        glfwDestroyWindow(window);
+        return fail(info.error().message);
+    }
+    int code = apps::kExitOk;
+    {
+        auto renderer = gl::GlTetRenderer::create();
+        if (!renderer.ok()) {
+            glfwDestroyWindow(window);
+            return fail(renderer.error().message);
+        }
+        const bool ui = !headless || args.panel_in_screenshot;
+        if (ui) {
+            IMGUI_CHECKVERSION();
+            ImGui::CreateContext();
+            ImGui::GetIO().IniFilename = nullptr;
+            ImGui_ImplGlfw_InitForOpenGL(window, true);
+            ImGui_ImplOpenGL3_Init("#version 330 core");
+        }
+        {
+            Viewer viewer(vs, window, **renderer, *integrator);
+            code = headless ? viewer.screenshot(args) : viewer.interactive(args.exit_after_frames);
+        }
+        if (ui) {
+            ImGui_ImplOpenGL3_Shutdown();
+            ImGui_ImplGlfw_Shutdown();
+            ImGui::DestroyContext();
+        }
+    }
+    glfwDestroyWindow(window);
+    return code;
+}
+
+}  // namespace
+}  // namespace tr::viewer
+
+int main(int argc, char** argv) {
+    tr::viewer::Args args;
+    CLI::App app{
+        "tetrender-view: interactive projected-tetrahedra viewer (OpenGL 3.3). Keys: left drag "
+        "rotate, right drag / wheel zoom, middle drag / shift+left pan, r reset, s screenshot, "
+        "p panel, ? keys, Esc quit."};
+    app.add_option("input", args.input, "Scene file (.json) or mesh file")->required();
+    app.add_option("--scalar", args.scalar,
+                   "Mesh mode: the array to show (default: the first point array, else the "
+                   "first cell array)");
+    app.add_option("--screenshot", args.screenshot,
+                   "Headless: render --frames frames, write the last (.png or .pfm), exit");
+    app.add_option("--frames", args.frames, "Headless: frames along the orbit (default 1)")
+        ->check(CLI::Range(1, 100000));
+    app.add_option("--orbit", args.orbit,
+                   "Headless: degrees the camera turns about the view's up axis over the frames");
+    app.add_option("--size", args.size, "Window / image size WxH (default 960x600 or the scene's)");
+    app.add_option("--integrator", args.integrator, "exp-texture (default) or preintegrated");
+    app.add_option("--sort", args.sort, "auto (default), mpvo, mpvonc, exact, centroid");
+    app.add_option("--colormap", args.colormap,
+                   "viridis, coolwarm, inferno, gray (default: the scene's colours, or viridis)");
+    app.add_option(
+           "--opacity", args.opacity,
+           "Largest opacity: of the ramp (default 0.3), or a scene's opacity points scaled to it")
+        ->check(CLI::Range(0.0, 0.999));
+    app.add_option("--unit-distance", args.unit_distance,
+                   "Unit distance of the opacities (default: the scene's, or diagonal / 20)")
+        ->check(CLI::PositiveNumber);
+    app.add_flag("--panel-in-screenshot", args.panel_in_screenshot,
+                 "Headless: draw the ImGui panel into the screenshot");
+    app.add_option("--exit-after-frames", args.exit_after_frames,
+                   "Interactive mode: quit after N frames (for tests)")
+        ->group("");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : tr::apps::kExitUsage;
+    }
+    try {
+        return tr::viewer::run(args);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "tetrender-view: %s\n", e.what());
+        return tr::apps::kExitError;
+    }
+}

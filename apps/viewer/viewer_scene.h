@@ -1,0 +1,66 @@
+#pragma once
+// What the viewer shows, without GL: the mesh ready to sort, its arrays, the scalar in use, the
+// transfer function the panel edits, the camera and the opaque surfaces. Loaded from a scene
+// file or, for a mesh file, made the way `tetrender render` quick mode makes its scene.
+
+#include <apps/sort_setup.h>
+#include <core/result.h>
+#include <mesh/surface_mesh.h>
+#include <mesh/unstructured_mesh.h>
+#include <project/scene.h>
+#include <project/transfer_function.h>
+
+#include <string>
+#include <vector>
+
+namespace tr::viewer {
+
+struct ViewerOptions {
+    std::string input;   // scene .json or mesh file
+    std::string scalar;  // mesh mode: array to show (empty: the first point array, else the first
+                         // cell array, else a constant)
+    std::string colormap = "viridis";
+    double max_opacity = 0;    // largest opacity: of the ramp (0: 0.3), or a scene's points scaled
+    double unit_distance = 0;  // 0: the quick default (bounds diagonal / 20) or the scene's
+    int width = 960, height = 600;  // mesh mode (a scene file gives its own unless --size)
+    bool size_given = false;
+    SortMethod sort = SortMethod::kAuto;
+};
+
+// The editable transfer function: a colour map spread over [lo, hi] and opacity points.
+struct TransferEdit {
+    std::string colormap;  // empty: the scene's own colours (`scene_colors`)
+    std::vector<ColorPoint> scene_colors;
+    std::vector<OpacityPoint> opacity;
+    double unit_distance = 1;
+    double lo = 0, hi = 1;  // the scalar's range
+};
+
+struct ViewerScene {
+    Scene scene;  // camera, size, background; transfer_function as loaded
+    UnstructuredMesh input;
+    apps::SortSetup setup;            // mesh (maybe convexified) and adjacency
+    std::vector<std::string> arrays;  // point and cell arrays that can be the scalar
+    std::string scalar_name;          // in use ("(constant)" when the mesh has none)
+    std::vector<float> scalar;        // one per setup.mesh point
+    TransferEdit edit;
+    double longest_edge = 1;
+    std::vector<SurfaceMesh> opaque;
+    std::vector<Vec3> opaque_colors;
+};
+
+// Loads everything. Errors as `tetrender render` words them (read_scene, load_tet_mesh, an
+// unknown array listing the available ones).
+Result<ViewerScene> load_viewer_scene(const ViewerOptions& options);
+
+// Switches to array `name` (a point or cell array of the mesh, magnitude of vectors): the
+// scalar and the transfer function's range follow, opacity points keep their relative places.
+Status select_scalar(ViewerScene& scene, const std::string& name);
+
+// The transfer function of `edit`.
+Result<TransferFunction> make_transfer_function(const TransferEdit& edit);
+
+// The initial opacity points: a ramp from 0 at lo to `max_opacity` at hi.
+std::vector<OpacityPoint> ramp_opacity(double lo, double hi, double max_opacity);
+
+}  // namespace tr::viewer

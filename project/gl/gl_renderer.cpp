@@ -1,0 +1,629 @@
+#include <core/parallel.h>
+#include <project/gl/gl_renderer.h>
+#include <project/tet_projection.h>
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace tr::gl {
+namespace {
+
+constexpr int kTfSize = 4096;          // texels of the 1D colour + extinction table
+constexpr int kFloatsPerVertex = 6;    // x, y (pixels), thickness, s_front, s_back, t_front
+constexpr int kVerticesPerCell = 5;    // the thick vertex, then the hull (4th repeated if 3)
+constexpr int kIndicesPerCell = 12;    // four triangles around the thick vertex
+constexpr float kNoSurface = 3.0e38f;  // ray parameter where no opaque surface is
+
+const char* kVolumeVs = R"(#version 330 core
+layout(location = 0) in vec2 a_pos;
+layout(location = 1) in vec4 a_attr;
+uniform vec2 u_size;
+uniform float u_depth_scale;
+noperspective out float v_u;
+noperspective out float v_sf;
+noperspective out float v_sb;
+noperspective out float v_tf;
+void main() {
+    vec2 ndc = vec2(2.0 * a_pos.x / u_size.x - 1.0, 1.0 - 2.0 * a_pos.y / u_size.y);
+    float z = clamp(a_attr.w * u_depth_scale, 0.0, 1.0) * 2.0 - 1.0;
+    gl_Position = vec4(ndc, z, 1.0);
+    v_u = a_attr.x;
+    v_sf = a_attr.y;
+    v_sb = a_attr.z;
+    v_tf = a_attr.w;
+}
+)";
+
+const char* kVolumeFs = R"(#version 330 core
+noperspective in float v_u;
+noperspective in float v_sf;
+noperspective in float v_sb;
+noperspective in float v_tf;
+uniform int u_mode;  // 0: exp texture, 1: pre-integrated
+uniform sampler1D u_tf;  // rgb: colour, a: extinction, over [u_s_lo, u_s_hi]
+uniform sampler2D u_exp;
+uniform sampler3D u_pre;
+uniform sampler2D u_opaque_t;
+uniform float u_s_lo;
+uniform float u_s_hi;
+uniform float u_max_len;
+uniform float u_kappa_max;
+uniform float u_exp_size;
+uniform float u_pre_scalars;
+uniform float u_pre_lengths;
+uniform float u_tf_size;
+out vec4 o_color;
+// Texture coordinate of grid index x (texel centres on the grid) in a table of n texels.
+float grid(float x, float n) { return (clamp(x, 0.0, n - 1.0) + 0.5) / n; }
+vec4 tf(float s) {
+    return texture(u_tf, grid((s - u_s_lo) / (u_s_hi - u_s_lo) * (u_tf_size - 1.0), u_tf_size));
+}
+void main() {
+    float u = v_u, sf = v_sf, sb = v_sb;
+    float room = texelFetch(u_opaque_t, ivec2(gl_FragCoord.xy), 0).r - v_tf;
+    if (!(room > 0.0)) discard;
+    if (room < u) {
+        sb = sf + (sb - sf) * room / u;
+        u = room;
+    }
+    if (!(u > 0.0)) discard;
+    if (u_mode == 0) {
+        if (!(u_kappa_max > 0.0)) discard;
+        float v = 0.5 * (tf(sf).a + tf(sb).a);
+        float x = u / u_max_len * (u_exp_size - 1.0);
+        float y = v / u_kappa_max * (u_exp_size - 1.0);
+        float alpha = texture(u_exp, vec2(grid(x, u_exp_size), grid(y, u_exp_size))).r;
+        o_color = vec4(tf(0.5 * (sf + sb)).rgb * alpha, alpha);
+    } else {
+        float scale = (u_pre_scalars - 1.0) / (u_s_hi - u_s_lo);
+        float x = (sf - u_s_lo) * scale;
+        float y = (sb - u_s_lo) * scale;
+        float z = u / u_max_len * (u_pre_lengths - 1.0);
+        o_color = texture(u_pre, vec3(grid(z, u_pre_lengths), grid(y, u_pre_scalars),
+                                      grid(x, u_pre_scalars)));
+    }
+}
+)";
+
+const char* kOpaqueVs = R"(#version 330 core
+layout(location = 0) in vec3 a_world;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec3 a_color;
+uniform vec3 u_eye;
+uniform vec3 u_right;
+uniform vec3 u_up;
+uniform vec3 u_forward;
+uniform float u_half_w;
+uniform float u_half_h;
+uniform int u_ortho;
+out vec3 v_world;
+flat out vec3 v_normal;
+flat out vec3 v_color;
+void main() {
+    vec3 d = a_world - u_eye;
+    float w = u_ortho != 0 ? 1.0 : dot(d, u_forward);
+    gl_Position = vec4(dot(d, u_right) / u_half_w, dot(d, u_up) / u_half_h, 0.0, w);
+    v_world = a_world;
+    v_normal = a_normal;
+    v_color = a_color;
+}
+)";
+
+const char* kOpaqueFs = R"(#version 330 core
+in vec3 v_world;
+flat in vec3 v_normal;
+flat in vec3 v_color;
+uniform vec3 u_eye;
+uniform vec3 u_forward;
+uniform int u_ortho;
+uniform float u_depth_scale;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out float o_t;
+void main() {
+    vec3 d = v_world - u_eye;
+    float t = u_ortho != 0 ? dot(d, u_forward) : length(d);
+    vec3 dir = u_ortho != 0 ? u_forward : normalize(d);
+    float lambert = abs(dot(v_normal, dir));
+    o_color = vec4(v_color * (0.2 + 0.8 * lambert), 1.0);
+    o_t = t;
+    gl_FragDepth = clamp(t * u_depth_scale, 0.0, 1.0);
+}
+)";
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+Result<GLuint> compile(GLenum type, const char* source, const char* name) {
+    const GLuint shader = glCreateShader(type);
+    glShaderSource(shader, 1, &source, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[4096] = {0};
+        glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
+        glDeleteShader(shader);
+        return make_error(ErrorCode::kUnsupported,
+                          std::string("GL shader '") + name + "' does not compile: " + log);
+    }
+    return shader;
+}
+
+Result<GLuint> link(const char* vs, const char* fs, const char* name) {
+    TR_TRY(const GLuint v, compile(GL_VERTEX_SHADER, vs, name));
+    auto f = compile(GL_FRAGMENT_SHADER, fs, name);
+    if (!f.ok()) {
+        glDeleteShader(v);
+        return f.error();
+    }
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, v);
+    glAttachShader(program, *f);
+    glLinkProgram(program);
+    glDeleteShader(v);
+    glDeleteShader(*f);
+    GLint ok = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[4096] = {0};
+        glGetProgramInfoLog(program, sizeof(log), nullptr, log);
+        glDeleteProgram(program);
+        return make_error(ErrorCode::kUnsupported,
+                          std::string("GL program '") + name + "' does not link: " + log);
+    }
+    return program;
+}
+
+}  // namespace
+
+Result<GlContextInfo> check_gl_context() {
+    GlContextInfo info;
+    const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    if (!version) return make_error(ErrorCode::kUnsupported, "no current OpenGL context");
+    info.version = version;
+    info.renderer = renderer ? renderer : "?";
+    const int v = epoxy_gl_version();
+    info.major = v / 10;
+    info.minor = v % 10;
+    if (v >= 32) {
+        GLint mask = 0;
+        glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
+        info.core = (mask & GL_CONTEXT_CORE_PROFILE_BIT) != 0;
+    }
+    if (v < 33 || !info.core) {
+        return make_error(ErrorCode::kUnsupported,
+                          "needs OpenGL 3.3 core; the context is OpenGL " + info.version + " (" +
+                              (info.core ? "core" : "not core") + ", " + info.renderer + ")");
+    }
+    return info;
+}
+
+struct GlTetRenderer::State {
+    GLuint volume_program = 0, opaque_program = 0;
+    GLuint volume_vao = 0, volume_vbo = 0, volume_ibo = 0;
+    std::size_t ibo_cells = 0;  // cells the index buffer covers
+    GLuint opaque_vao = 0, opaque_vbo = 0;
+    GLsizei opaque_vertices = 0;
+    Bounds3 opaque_bounds;
+    GLuint tf_tex = 0, exp_tex = 0, pre_tex = 0;
+    GLuint color_tex = 0, t_tex = 0, depth_tex = 0;
+    GLuint opaque_fbo = 0, volume_fbo = 0;
+    int width = 0, height = 0;
+    const TetMesh* mesh = nullptr;
+    std::vector<float> scalar;
+    std::vector<float> staging;
+    int mode = 0;
+    SegmentShaderTables tables;
+    std::unique_ptr<TransferFunction> tf;
+    std::unique_ptr<SegmentShader> shader;
+
+    void resize(int w, int h);
+};
+
+void GlTetRenderer::State::resize(int w, int h) {
+    if (w == width && h == height && color_tex) return;
+    width = w, height = h;
+    if (!color_tex) {
+        glGenTextures(1, &color_tex);
+        glGenTextures(1, &t_tex);
+        glGenTextures(1, &depth_tex);
+        glGenFramebuffers(1, &opaque_fbo);
+        glGenFramebuffers(1, &volume_fbo);
+    }
+    auto setup = [&](GLuint tex, GLint internal, GLenum format, GLenum type) {
+        glBindTexture(GL_TEXTURE_2D, tex);
+        glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format, type, nullptr);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    };
+    setup(color_tex, GL_RGBA32F, GL_RGBA, GL_FLOAT);
+    setup(t_tex, GL_R32F, GL_RED, GL_FLOAT);
+    setup(depth_tex, GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT);
+    glBindFramebuffer(GL_FRAMEBUFFER, opaque_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_tex, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, t_tex, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_tex, 0);
+    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(2, both);
+    glBindFramebuffer(GL_FRAMEBUFFER, volume_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_tex, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_tex, 0);
+    glDrawBuffer(GL_COLOR_ATTACHMENT0);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+Result<std::unique_ptr<GlTetRenderer>> GlTetRenderer::create() {
+    std::unique_ptr<GlTetRenderer> r(new GlTetRenderer());
+    r->state_ = std::make_unique<State>();
+    State& s = *r->state_;
+    TR_TRY(s.volume_program, link(kVolumeVs, kVolumeFs, "volume"));
+    TR_TRY(s.opaque_program, link(kOpaqueVs, kOpaqueFs, "opaque"));
+    glGenVertexArrays(1, &s.volume_vao);
+    glGenBuffers(1, &s.volume_vbo);
+    glGenBuffers(1, &s.volume_ibo);
+    glBindVertexArray(s.volume_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, s.volume_vbo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.volume_ibo);
+    const GLsizei stride = kFloatsPerVertex * sizeof(float);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(2 * sizeof(float)));
+    glGenVertexArrays(1, &s.opaque_vao);
+    glGenBuffers(1, &s.opaque_vbo);
+    glBindVertexArray(s.opaque_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, s.opaque_vbo);
+    for (int a = 0; a < 3; ++a) {
+        glEnableVertexAttribArray(a);
+        glVertexAttribPointer(a, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float),
+                              reinterpret_cast<const void*>(a * 3 * sizeof(float)));
+    }
+    glBindVertexArray(0);
+    glGenTextures(1, &s.tf_tex);
+    glGenTextures(1, &s.exp_tex);
+    glGenTextures(1, &s.pre_tex);
+    // Samplers: 0 transfer function, 1 exp texture, 2 pre-integrated, 3 opaque ray parameter.
+    glUseProgram(s.volume_program);
+    glUniform1i(glGetUniformLocation(s.volume_program, "u_tf"), 0);
+    glUniform1i(glGetUniformLocation(s.volume_program, "u_exp"), 1);
+    glUniform1i(glGetUniformLocation(s.volume_program, "u_pre"), 2);
+    glUniform1i(glGetUniformLocation(s.volume_program, "u_opaque_t"), 3);
+    glUseProgram(0);
+    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+        return make_error(ErrorCode::kUnsupported,
+                          "GL error " + std::to_string(e) + " while setting up the renderer");
+    }
+    return r;
+}
+
+GlTetRenderer::~GlTetRenderer() {
+    if (!state_) return;
+    State& s = *state_;
+    glDeleteProgram(s.volume_program);
+    glDeleteProgram(s.opaque_program);
+    const GLuint arrays[2] = {s.volume_vao, s.opaque_vao};
+    glDeleteVertexArrays(2, arrays);
+    const GLuint buffers[3] = {s.volume_vbo, s.volume_ibo, s.opaque_vbo};
+    glDeleteBuffers(3, buffers);
+    const GLuint textures[6] = {s.tf_tex, s.exp_tex, s.pre_tex, s.color_tex, s.t_tex, s.depth_tex};
+    glDeleteTextures(6, textures);
+    const GLuint fbos[2] = {s.opaque_fbo, s.volume_fbo};
+    glDeleteFramebuffers(2, fbos);
+}
+
+void GlTetRenderer::set_mesh(const TetMesh* mesh, std::span<const float> scalar) {
+    state_->mesh = mesh;
+    set_scalar(scalar);
+}
+
+void GlTetRenderer::set_scalar(std::span<const float> scalar) {
+    state_->scalar.assign(scalar.begin(), scalar.end());
+}
+
+void GlTetRenderer::set_transfer_function(const TransferFunction& tf, Integrator integrator,
+                                          double max_length) {
+    State& s = *state_;
+    if (integrator == Integrator::kExact) integrator = Integrator::kPreintegrated;
+    s.mode = integrator == Integrator::kExpTexture ? 0 : 1;
+    s.tf = std::make_unique<TransferFunction>(tf);
+    s.shader = std::make_unique<SegmentShader>(*s.tf, integrator, max_length);
+    s.tables = s.shader->tables();
+    // Colour and extinction over the tables' scalar range.
+    std::vector<float> table(kTfSize * 4);
+    for (int i = 0; i < kTfSize; ++i) {
+        const double sv = s.tables.s_lo + (s.tables.s_hi - s.tables.s_lo) * i / (kTfSize - 1);
+        const Vec3 c = tf.color(sv);
+        table[i * 4 + 0] = static_cast<float>(c.x);
+        table[i * 4 + 1] = static_cast<float>(c.y);
+        table[i * 4 + 2] = static_cast<float>(c.z);
+        table[i * 4 + 3] = static_cast<float>(tf.extinction(sv));
+    }
+    glBindTexture(GL_TEXTURE_1D, s.tf_tex);
+    glTexImage1D(GL_TEXTURE_1D, 0, GL_RGBA32F, kTfSize, 0, GL_RGBA, GL_FLOAT, table.data());
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glBindTexture(GL_TEXTURE_1D, 0);
+    if (s.mode == 0) {
+        glBindTexture(GL_TEXTURE_2D, s.exp_tex);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, s.tables.exp_size, s.tables.exp_size, 0, GL_RED,
+                     GL_FLOAT, s.tables.exp_table.data());
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glBindTexture(GL_TEXTURE_2D, 0);
+    } else {
+        glBindTexture(GL_TEXTURE_3D, s.pre_tex);
+        glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA32F, s.tables.pre_lengths, s.tables.pre_scalars,
+                     s.tables.pre_scalars, 0, GL_RGBA, GL_FLOAT, s.tables.preint_table.data());
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+        glBindTexture(GL_TEXTURE_3D, 0);
+    }
+}
+
+void GlTetRenderer::set_opaque(const std::vector<OpaqueSurface>& surfaces) {
+    State& s = *state_;
+    std::vector<float> vertices;
+    s.opaque_bounds = Bounds3{};
+    for (const OpaqueSurface& surface : surfaces) {
+        for (const auto& tri : surface.surface->triangles) {
+            const Vec3& a = surface.surface->points[tri[0]];
+            const Vec3& b = surface.surface->points[tri[1]];
+            const Vec3& c = surface.surface->points[tri[2]];
+            const Vec3 cross = glm::cross(b - a, c - a);
+            const double len = glm::length(cross);
+            if (!(len > 0)) continue;
+            const Vec3 n = cross / len;
+            for (const Vec3* p : {&a, &b, &c}) {
+                s.opaque_bounds.extend(*p);
+                for (const Vec3& v : {*p, n, surface.color}) {
+                    vertices.push_back(static_cast<float>(v.x));
+                    vertices.push_back(static_cast<float>(v.y));
+                    vertices.push_back(static_cast<float>(v.z));
+                }
+            }
+        }
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, s.opaque_vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
+                 vertices.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    s.opaque_vertices = static_cast<GLsizei>(vertices.size() / 9);
+}
+
+GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const CellId> order,
+                                   const Vec3& background) {
+    State& s = *state_;
+    GlFrameStats stats;
+    stats.cells = order.size();
+    const int w = camera.width(), h = camera.height();
+    s.resize(w, h);
+
+    // Depth: the ray parameter over the farthest distance anything can be.
+    Bounds3 bounds = s.mesh ? s.mesh->bounds() : Bounds3{};
+    if (s.opaque_vertices > 0) {
+        bounds.extend(s.opaque_bounds.lo);
+        bounds.extend(s.opaque_bounds.hi);
+    }
+    const Vec3 centre = 0.5 * (bounds.lo + bounds.hi);
+    const double far =
+        std::max(glm::length(centre - camera.eye()) + 0.5 * bounds.diagonal(), 1e-30) * 1.01 +
+        (camera.orthographic() ? 0.5 * bounds.diagonal() : 0.0);
+    const float depth_scale = static_cast<float>(1.0 / far);
+
+    // CPU: classify every cell of the order into its slot of the vertex stream.
+    const auto classify_start = std::chrono::steady_clock::now();
+    const std::size_t n = order.size();
+    s.staging.resize(n * kVerticesPerCell * kFloatsPerVertex);
+    std::atomic<std::size_t> drawn{0};
+    if (s.mesh && n > 0) {
+        const TetMesh& mesh = *s.mesh;
+        const std::span<const float> scalar = s.scalar;
+        const bool orthographic = camera.orthographic();
+        parallel_for_chunks(0, n, 2048, [&](std::size_t begin, std::size_t end) {
+            std::size_t local = 0;
+            for (std::size_t i = begin; i < end; ++i) {
+                float* out = &s.staging[i * kVerticesPerCell * kFloatsPerVertex];
+                const CellId t = order[i];
+                bool ok = true;
+                if (!orthographic) {
+                    for (PointId p : mesh.tet(t)) {
+                        if (glm::dot(mesh.point(p) - camera.eye(), camera.forward()) <= 0) {
+                            ok = false;
+                        }
+                    }
+                }
+                StProjection st;
+                if (ok) {
+                    const TetPlanes planes = tet_planes(mesh, scalar, t);
+                    ok = shirley_tuchman_projection(mesh, scalar, t, planes, camera, st);
+                }
+                if (!ok) {
+                    std::memset(out, 0, kVerticesPerCell * kFloatsPerVertex * sizeof(float));
+                    continue;
+                }
+                ++local;
+                auto put = [&](int slot, const StVertex& v) {
+                    float* o = out + slot * kFloatsPerVertex;
+                    o[0] = static_cast<float>(v.x);
+                    o[1] = static_cast<float>(v.y);
+                    o[2] = static_cast<float>(v.thickness);
+                    o[3] = static_cast<float>(v.s_front);
+                    o[4] = static_cast<float>(v.s_back);
+                    o[5] = static_cast<float>(v.t_front);
+                };
+                put(0, st.thick);
+                for (int k = 0; k < 4; ++k)
+                    put(1 + k, st.corners[st.hull[std::min(k, st.num_hull - 1)]]);
+            }
+            drawn += local;
+        });
+    }
+    stats.cells_drawn = drawn.load();
+    stats.classify_ms = ms_since(classify_start);
+
+    const auto raster_start = std::chrono::steady_clock::now();
+    if (s.ibo_cells < n) {
+        // Four triangles (thick, hull[k], hull[k + 1]) per cell slot.
+        const std::size_t cells = std::max<std::size_t>(n, 2 * s.ibo_cells);
+        std::vector<std::uint32_t> indices(cells * kIndicesPerCell);
+        for (std::size_t c = 0; c < cells; ++c) {
+            const auto b = static_cast<std::uint32_t>(c * kVerticesPerCell);
+            const std::uint32_t tri[kIndicesPerCell] = {b, b + 1, b + 2, b, b + 2, b + 3,
+                                                        b, b + 3, b + 4, b, b + 4, b + 1};
+            std::copy(tri, tri + kIndicesPerCell, &indices[c * kIndicesPerCell]);
+        }
+        glBindVertexArray(s.volume_vao);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
+                     indices.data(), GL_STATIC_DRAW);
+        glBindVertexArray(0);
+        s.ibo_cells = cells;
+    }
+
+    // Background and opaque surfaces: colour, ray parameter, depth.
+    glViewport(0, 0, w, h);
+    glBindFramebuffer(GL_FRAMEBUFFER, s.opaque_fbo);
+    const float clear_color[4] = {static_cast<float>(background.x),
+                                  static_cast<float>(background.y),
+                                  static_cast<float>(background.z), 0.0f};
+    const float clear_t[4] = {kNoSurface, 0, 0, 0};
+    const float clear_depth = 1.0f;
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glClearBufferfv(GL_COLOR, 0, clear_color);
+    glClearBufferfv(GL_COLOR, 1, clear_t);
+    glClearBufferfv(GL_DEPTH, 0, &clear_depth);
+    const Vec3 eye = camera.eye();
+    auto set3 = [](GLuint program, const char* name, const Vec3& v) {
+        glUniform3f(glGetUniformLocation(program, name), static_cast<float>(v.x),
+                    static_cast<float>(v.y), static_cast<float>(v.z));
+    };
+    if (s.opaque_vertices > 0) {
+        const GLuint p = s.opaque_program;
+        glUseProgram(p);
+        set3(p, "u_eye", eye);
+        set3(p, "u_right", camera.right());
+        set3(p, "u_up", camera.up());
+        set3(p, "u_forward", camera.forward());
+        // Half the view's extent at unit depth (perspective) or in world units (orthographic),
+        // measured from the camera itself so that it matches CameraFrame::project.
+        const Vec3 corner = camera.ray(w, 0).direction;
+        double half_w = 0, half_h = 0;
+        if (camera.orthographic()) {
+            const Ray r = camera.ray(w, 0);
+            half_w = glm::dot(r.origin - eye, camera.right());
+            half_h = glm::dot(r.origin - eye, camera.up());
+        } else {
+            half_w = glm::dot(corner, camera.right()) / glm::dot(corner, camera.forward());
+            half_h = glm::dot(corner, camera.up()) / glm::dot(corner, camera.forward());
+        }
+        glUniform1f(glGetUniformLocation(p, "u_half_w"), static_cast<float>(half_w));
+        glUniform1f(glGetUniformLocation(p, "u_half_h"), static_cast<float>(half_h));
+        glUniform1i(glGetUniformLocation(p, "u_ortho"), camera.orthographic() ? 1 : 0);
+        glUniform1f(glGetUniformLocation(p, "u_depth_scale"), depth_scale);
+        glBindVertexArray(s.opaque_vao);
+        glDrawArrays(GL_TRIANGLES, 0, s.opaque_vertices);
+    }
+
+    // The volume: depth test on, no depth write, premultiplied over.
+    glBindFramebuffer(GL_FRAMEBUFFER, s.volume_fbo);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    if (s.shader && n > 0) {
+        const GLuint p = s.volume_program;
+        glUseProgram(p);
+        glUniform2f(glGetUniformLocation(p, "u_size"), static_cast<float>(w),
+                    static_cast<float>(h));
+        glUniform1f(glGetUniformLocation(p, "u_depth_scale"), depth_scale);
+        glUniform1i(glGetUniformLocation(p, "u_mode"), s.mode);
+        glUniform1f(glGetUniformLocation(p, "u_s_lo"), static_cast<float>(s.tables.s_lo));
+        glUniform1f(glGetUniformLocation(p, "u_s_hi"), static_cast<float>(s.tables.s_hi));
+        glUniform1f(glGetUniformLocation(p, "u_max_len"), static_cast<float>(s.tables.max_length));
+        glUniform1f(glGetUniformLocation(p, "u_kappa_max"), static_cast<float>(s.tables.kappa_max));
+        glUniform1f(glGetUniformLocation(p, "u_exp_size"), static_cast<float>(s.tables.exp_size));
+        glUniform1f(glGetUniformLocation(p, "u_pre_scalars"),
+                    static_cast<float>(s.tables.pre_scalars));
+        glUniform1f(glGetUniformLocation(p, "u_pre_lengths"),
+                    static_cast<float>(s.tables.pre_lengths));
+        glUniform1f(glGetUniformLocation(p, "u_tf_size"), static_cast<float>(kTfSize));
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_1D, s.tf_tex);
+        glActiveTexture(GL_TEXTURE1);
+        glBindTexture(GL_TEXTURE_2D, s.exp_tex);
+        glActiveTexture(GL_TEXTURE2);
+        glBindTexture(GL_TEXTURE_3D, s.pre_tex);
+        glActiveTexture(GL_TEXTURE3);
+        glBindTexture(GL_TEXTURE_2D, s.t_tex);
+        glBindVertexArray(s.volume_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, s.volume_vbo);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.staging.size() * sizeof(float)),
+                     s.staging.data(), GL_STREAM_DRAW);
+        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(n * kIndicesPerCell), GL_UNSIGNED_INT,
+                       nullptr);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glActiveTexture(GL_TEXTURE0);
+    }
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glFinish();
+    stats.raster_ms = ms_since(raster_start);
+    return stats;
+}
+
+Image GlTetRenderer::read_image() const {
+    const State& s = *state_;
+    Image image(s.width, s.height);
+    if (s.width == 0) return image;
+    std::vector<float> rgb(static_cast<std::size_t>(s.width) * s.height * 3);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, s.volume_fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, s.width, s.height, GL_RGB, GL_FLOAT, rgb.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    for (int y = 0; y < s.height; ++y) {
+        const float* row = &rgb[static_cast<std::size_t>(s.height - 1 - y) * s.width * 3];
+        for (int x = 0; x < s.width; ++x)
+            image.at(x, y) = Vec3f(row[3 * x], row[3 * x + 1], row[3 * x + 2]);
+    }
+    return image;
+}
+
+void GlTetRenderer::bind_framebuffer() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, state_->volume_fbo);
+    glViewport(0, 0, state_->width, state_->height);
+}
+
+void GlTetRenderer::blit_to_default(int width, int height) const {
+    const State& s = *state_;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, s.volume_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glBlitFramebuffer(0, 0, s.width, s.height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+}  // namespace tr::gl

@@ -1,0 +1,77 @@
+#include <tests/apps/cli_runner.h>
+#include <tests/viewer/viewer_runner.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace tr::testing {
+
+bool require_xvfb() {
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") == 0) return true;
+    const char* ci = std::getenv("CI");
+    if (ci && std::string(ci) == "true") {
+        ADD_FAILURE() << "CI=true but xvfb-run is missing (Debian packages xvfb and xauth)";
+    }
+    return false;
+}
+
+ViewerRun run_viewer(const std::string& args, bool xvfb, const std::string& prefix) {
+    const std::string dir = make_temp_dir();
+    const std::string out = dir + "/out.txt";
+    const std::string err = dir + "/err.txt";
+    std::string command = prefix + " ";
+    if (xvfb) command += "xvfb-run -a -s '-screen 0 1280x1024x24' ";
+    command += shell_quote(TETRENDER_VIEW_PATH) + " " + args + " >" + shell_quote(out) + " 2>" +
+               shell_quote(err) + " </dev/null";
+    const int status = std::system(command.c_str());
+    ViewerRun run;
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    auto slurp = [](const std::string& path) {
+        std::ifstream in(path);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        return ss.str();
+    };
+    run.out = slurp(out);
+    run.err = slurp(err);
+    std::filesystem::remove_all(dir);
+    return run;
+}
+
+Image read_pfm(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string magic;
+    int w = 0, h = 0;
+    double scale = 0;
+    in >> magic >> w >> h >> scale;
+    in.get();
+    if (!in || magic != "PF" || w <= 0 || h <= 0 || scale >= 0) return {};
+    std::vector<float> data(static_cast<std::size_t>(w) * h * 3);
+    in.read(reinterpret_cast<char*>(data.data()),
+            static_cast<std::streamsize>(data.size() * sizeof(float)));
+    if (!in) return {};
+    Image image(w, h);
+    for (int y = 0; y < h; ++y) {
+        const float* row = &data[static_cast<std::size_t>(h - 1 - y) * w * 3];
+        for (int x = 0; x < w; ++x)
+            image.at(x, y) = Vec3f(row[3 * x], row[3 * x + 1], row[3 * x + 2]);
+    }
+    return image;
+}
+
+double lit_fraction(const Image& image, float threshold) {
+    if (image.pixels.empty()) return 0;
+    std::size_t lit = 0;
+    for (const Vec3f& p : image.pixels) {
+        if (std::max({p.x, p.y, p.z}) > threshold) ++lit;
+    }
+    return static_cast<double>(lit) / static_cast<double>(image.pixels.size());
+}
+
+}  // namespace tr::testing
