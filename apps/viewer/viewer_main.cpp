@@ -2,6 +2,7 @@
 // its headless screenshot mode for tests and benchmarks.
 #include <apps/cli_common.h>
 #include <apps/viewer/sort_worker.h>
+#include <apps/viewer/viewer_flow.h>
 #include <apps/viewer/viewer_scene.h>
 #include <core/image.h>
 #include <io/write_image.h>
@@ -22,7 +23,9 @@
 #include <cstdlib>
 #include <deque>
 #include <memory>
+#include <numeric>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -49,6 +52,10 @@ struct Args {
     double unit_distance = 0;
     bool panel_in_screenshot = false;
     int exit_after_frames = 0;  // interactive mode: quit after this many frames (tests)
+    // A flow volume from the command line (as `tetrender flowvol` names the options).
+    std::string flowvol_vectors;
+    std::vector<double> seed_center, seed_size, seed_normal;
+    FlowVolumeSpec flow;  // resolution, steps, dt, split threshold
 };
 
 std::string glfw_error_text;
@@ -95,6 +102,11 @@ class Viewer {
             opaque.push_back({&vs_.opaque[i], vs_.opaque_colors[i]});
         renderer_.set_opaque(opaque);
         renderer_.set_transfer_function(vs_.scene.transfer_function, integrator_, vs_.longest_edge);
+        if (vs_.flow) {
+            grower_ = std::make_unique<FlowGrower>(*vs_.flow);
+            flow_spec_ = vs_.scene.flow_volume.value_or(default_flow_spec(*vs_.flow));
+            show_flow_ = vs_.scene.flow_volume.has_value();
+        }
     }
 
     // Headless: N frames along an orbit, the last one written. Returns the exit code.
@@ -105,6 +117,13 @@ class Viewer {
         double frame_ms = 0, sort_ms = 0, classify_ms = 0, raster_ms = 0;
         std::size_t sorts = 0, drawn = 0;
         std::uint64_t last_seen = 0;
+        if (show_flow_) {
+            // Grown before the frames; they show it growing, one layer a frame, and the last
+            // frame shows all of it.
+            request_flow();
+            install_flow(grower_->wait_for(flow_request_));
+            if (!flow_) return apps::report_error(*flow_error_);
+        }
         for (int i = 0; i < frames; ++i) {
             const auto frame_start = Clock::now();
             const double angle = glm::radians(args.orbit) * (i + 1) / frames;
@@ -113,20 +132,28 @@ class Viewer {
                 home_.focal_point + rotate_about(home_.position - home_.focal_point, axis, angle);
             camera_.view_up = rotate_about(home_.view_up, axis, angle);
             const bool last = i + 1 == frames;
-            const SortedOrder order = current_order(last);
-            if (order.view_id != last_seen) {
-                last_seen = order.view_id;
-                sort_ms += order.stats.milliseconds;
-                ++sorts;
-            }
             const CameraFrame frame(camera_, vs_.scene.width, vs_.scene.height);
-            const gl::GlFrameStats stats =
-                renderer_.render(frame, *order.order, vs_.scene.background);
+            gl::GlFrameStats stats;
+            if (show_flow_) {
+                layers_shown_ =
+                    last ? flow_->volume->layer_tets.size()
+                         : std::min<std::size_t>(i + 1, flow_->volume->layer_tets.size());
+                stats = render_flow(frame);
+            } else {
+                const SortedOrder order = current_order(last);
+                if (order.view_id != last_seen) {
+                    last_seen = order.view_id;
+                    sort_ms += order.stats.milliseconds;
+                    ++sorts;
+                }
+                stats = renderer_.render(frame, *order.order, vs_.scene.background);
+                active_ = &renderer_;
+            }
             classify_ms += stats.classify_ms;
             raster_ms += stats.raster_ms;
             drawn = stats.cells_drawn;
             if (last && args.panel_in_screenshot) {
-                renderer_.bind_framebuffer();
+                active_->bind_framebuffer();
                 last_stats_ = stats;
                 frame_ms_.add(apps::ms_since(frame_start));
                 // Auto-sized windows appear on ImGui's second frame: lay out twice first.
@@ -136,27 +163,43 @@ class Viewer {
             }
             frame_ms += apps::ms_since(frame_start);
         }
-        const Image image = renderer_.read_image();
+        const Image image = active_->read_image();
         const Status written = write_image(image, args.screenshot);
         if (!written.ok()) return apps::report_error(written.error());
+        std::string flow;
+        if (show_flow_) {
+            char text[160];
+            std::snprintf(text, sizeof(text),
+                          ", flow volume: %zu layers, %zu particles inserted, grown in %.1f ms",
+                          flow_->volume->layer_tets.size(), flow_->volume->particles_inserted,
+                          flow_->grow_ms);
+            flow = text;
+        }
+        const std::size_t cells =
+            show_flow_ ? flow_->volume->mesh.num_tets() : vs_.setup.mesh.num_real_tets();
         std::fprintf(stderr,
                      "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), sort %.1f ms mean "
                      "(%zu sorts), classify %.1f ms, raster %.1f ms, %zu cells (%zu drawn), "
-                     "%dx%d, %s\n",
+                     "%dx%d, %s%s\n",
                      frames, frame_ms / frames, 1000.0 * frames / frame_ms,
                      sorts ? sort_ms / static_cast<double>(sorts) : 0.0, sorts,
-                     classify_ms / frames, raster_ms / frames, vs_.setup.mesh.num_real_tets(),
-                     drawn, vs_.scene.width, vs_.scene.height, integrator_name(integrator_).data());
+                     classify_ms / frames, raster_ms / frames, cells, drawn, vs_.scene.width,
+                     vs_.scene.height, integrator_name(integrator_).data(), flow.c_str());
         return apps::kExitOk;
     }
 
     int interactive(int exit_after_frames) {
+        headless_ = false;
         glfwSetScrollCallback(window_, on_scroll);
         std::printf("%s\n", kKeys);
         glfwGetCursorPos(window_, &mouse_x_, &mouse_y_);
         int frames = 0;
+        if (show_flow_) request_flow();
         while (!glfwWindowShouldClose(window_)) {
-            if (exit_after_frames > 0 && frames++ >= exit_after_frames) break;
+            // (Tests: a flow volume being grown is waited for.)
+            if (exit_after_frames > 0 && frames++ >= exit_after_frames &&
+                !(show_flow_ && grower_ && grower_->busy()))
+                break;
             const auto frame_start = Clock::now();
             glfwPollEvents();
             handle_input();
@@ -170,32 +213,49 @@ class Viewer {
                 glfwWaitEvents();
                 continue;
             }
-            const SortedOrder order = current_order(false);
-            // The volume is drawn again only when something it shows changed; the panel is
-            // drawn every frame so that it stays responsive.
-            const VolumeKey key{camera_, order.view_id, tf_version_, fw, fh};
-            if (!drawn_ || !(key == *drawn_)) {
-                const CameraFrame frame(camera_, fw, fh);
-                last_stats_ = renderer_.render(frame, *order.order, vs_.scene.background);
-                drawn_ = key;
+            bool idle = false;
+            if (show_flow_) {
+                // The dye, unsorted; a new flow volume appears one layer a frame.
+                if (auto grown = grower_->take()) install_flow(std::move(grown));
+                if (flow_ && layers_shown_ < flow_->volume->layer_tets.size()) ++layers_shown_;
+                const VolumeKey key{camera_,      0, tf_version_, fw, fh, flow_ ? flow_->id : 0,
+                                    layers_shown_};
+                if (!drawn_ || !(key == *drawn_)) {
+                    last_stats_ = render_flow(CameraFrame(camera_, fw, fh));
+                    drawn_ = key;
+                }
+                idle = !grower_->busy() &&
+                       (!flow_ || layers_shown_ == flow_->volume->layer_tets.size());
+            } else {
+                const SortedOrder order = current_order(false);
+                // The volume is drawn again only when something it shows changed; the panel is
+                // drawn every frame so that it stays responsive.
+                const VolumeKey key{camera_, order.view_id, tf_version_, fw, fh, 0, 0};
+                if (!drawn_ || !(key == *drawn_)) {
+                    const CameraFrame frame(camera_, fw, fh);
+                    last_stats_ = renderer_.render(frame, *order.order, vs_.scene.background);
+                    active_ = &renderer_;
+                    drawn_ = key;
+                }
+                idle = order_current_;
             }
             if (screenshot_requested_) {
                 screenshot_requested_ = false;
                 const std::string name =
                     "tetrender-view-" + std::to_string(++screenshots_) + ".png";
-                const Status written = write_image(renderer_.read_image(), name);
+                const Status written = write_image(active_->read_image(), name);
                 if (written.ok()) {
                     std::printf("screenshot: %s\n", name.c_str());
                 } else {
                     std::fprintf(stderr, "tetrender-view: %s\n", written.error().message.c_str());
                 }
             }
-            renderer_.blit_to_default(fw, fh);
+            active_->blit_to_default(fw, fh);
             draw_ui();
             glfwSwapBuffers(window_);
             frame_ms_.add(apps::ms_since(frame_start));
             // Idle (nothing moving, the sort done): wait for events instead of spinning.
-            if (order_current_ && !tf_dirty_) glfwWaitEventsTimeout(0.1);
+            if (idle && !tf_dirty_) glfwWaitEventsTimeout(0.1);
         }
         return apps::kExitOk;
     }
@@ -301,6 +361,163 @@ class Viewer {
         vs_.scene.transfer_function = std::move(tf).value();
         ++tf_version_;
         renderer_.set_transfer_function(vs_.scene.transfer_function, integrator_, vs_.longest_edge);
+        if (flow_) set_dye_transfer_function();
+    }
+
+    // Asks the grower for the panel's flow volume (a newer request replaces a pending one).
+    void request_flow() {
+        grower_->request(flow_spec_, ++flow_request_);
+        flow_error_.reset();
+    }
+
+    // Puts a grown flow volume on screen (from its first layer), or keeps the one there and
+    // shows why growth failed. While a drag asks for new ones, each finished one is shown.
+    void install_flow(std::shared_ptr<GrownFlowVolume> grown) {
+        if (!grown || (flow_ && grown->id <= flow_->id)) return;
+        if (grown->error) {
+            flow_error_ = grown->error;
+            return;
+        }
+        if (!dye_renderer_) {
+            auto created = gl::GlTetRenderer::create();
+            if (!created.ok()) {
+                flow_error_ = created.error();
+                return;
+            }
+            dye_renderer_ = std::move(created).value();
+            dye_renderer_->set_opaque(opaque_surfaces());
+        }
+        if (!headless_) {
+            std::printf(
+                "flow volume: %zu layers, %zu tets, %zu particles inserted, grown in %.0f ms\n",
+                grown->volume->layer_tets.size(), grown->volume->mesh.num_tets(),
+                grown->volume->particles_inserted, grown->grow_ms);
+        }
+        dye_renderer_->set_mesh(&grown->volume->mesh, grown->concentration);
+        flow_ = std::move(grown);  // after set_mesh: the previous mesh is no longer referenced
+        set_dye_transfer_function();
+        dye_order_.resize(flow_->volume->mesh.num_tets());
+        std::iota(dye_order_.begin(), dye_order_.end(), CellId{0});
+        layers_shown_ = 0;
+    }
+
+    void set_dye_transfer_function() {
+        dye_renderer_->set_transfer_function(
+            dye_transfer_function(flow_->spec, vs_.flow->loaded.tets), integrator_,
+            flow_->longest_edge);
+        ++tf_version_;
+    }
+
+    // The dye's first layers_shown_ layers over the opaque surfaces, in any order (one glow
+    // colour: compositing commutes); before the first flow volume, the opaque surfaces alone.
+    gl::GlFrameStats render_flow(const CameraFrame& frame) {
+        if (!flow_ || layers_shown_ == 0) {
+            active_ = &renderer_;
+            return renderer_.render(frame, {}, vs_.scene.background);
+        }
+        const std::size_t end = flow_->volume->layer_tets[layers_shown_ - 1];
+        active_ = dye_renderer_.get();
+        return dye_renderer_->render(frame, std::span<const CellId>(dye_order_).first(end),
+                                     vs_.scene.background);
+    }
+
+    std::vector<OpaqueSurface> opaque_surfaces() const {
+        std::vector<OpaqueSurface> opaque;
+        for (std::size_t i = 0; i < vs_.opaque.size(); ++i)
+            opaque.push_back({&vs_.opaque[i], vs_.opaque_colors[i]});
+        return opaque;
+    }
+
+    // The panel's flow-volume section: the seed polygon and growth options (a change regrows),
+    // what was grown and how long it took.
+    void flow_panel() {
+        if (!ImGui::CollapsingHeader("flow volume", ImGuiTreeNodeFlags_DefaultOpen)) return;
+        if (!vs_.flow) {
+            ImGui::TextDisabled("(the mesh has no 3-component point array)");
+            return;
+        }
+        if (ImGui::Checkbox("show flow volume", &show_flow_)) {
+            drawn_.reset();
+            if (show_flow_ && !flow_ && !grower_->busy()) request_flow();
+        }
+        bool changed = false;
+        FlowVolumeSpec& spec = flow_spec_;
+        if (ImGui::BeginCombo("vectors", spec.vectors.c_str())) {
+            for (const std::string& name : vs_.flow->vector_arrays) {
+                if (ImGui::Selectable(name.c_str(), name == spec.vectors) && name != spec.vectors) {
+                    spec.vectors = name;
+                    changed = true;
+                }
+            }
+            ImGui::EndCombo();
+        }
+        const Bounds3 bounds = vs_.flow->loaded.tets.bounds();
+        const double diag = std::max(bounds.diagonal(), 1e-30);
+        const double lo = std::min({bounds.lo.x, bounds.lo.y, bounds.lo.z});
+        const double hi = std::max({bounds.hi.x, bounds.hi.y, bounds.hi.z});
+        if (ImGui::DragScalarN("seed centre", ImGuiDataType_Double, &spec.seed_center.x, 3,
+                               static_cast<float>(diag * 2e-3), &lo, &hi, "%.4g")) {
+            spec.seed_center = glm::clamp(spec.seed_center, bounds.lo, bounds.hi);
+            changed = true;
+        }
+        const double size_lo = diag * 1e-3, size_hi = diag;
+        changed |= ImGui::SliderScalar("seed width", ImGuiDataType_Double, &spec.seed_width,
+                                       &size_lo, &size_hi, "%.4g", ImGuiSliderFlags_Logarithmic);
+        changed |= ImGui::SliderScalar("seed height", ImGuiDataType_Double, &spec.seed_height,
+                                       &size_lo, &size_hi, "%.4g", ImGuiSliderFlags_Logarithmic);
+        changed |= ImGui::SliderInt("resolution", &spec.seed_resolution, 1, 256);
+        changed |= ImGui::SliderInt("steps", &spec.steps, 1, 1000);
+        const double dt_lo = 1e-6 * diag, dt_hi = diag;
+        changed |= ImGui::SliderScalar("dt", ImGuiDataType_Double, &spec.dt, &dt_lo, &dt_hi, "%.4g",
+                                       ImGuiSliderFlags_Logarithmic);
+        const double split_lo = 0, split_hi = 8;
+        if (ImGui::SliderScalar("split threshold", ImGuiDataType_Double, &spec.split_threshold,
+                                &split_lo, &split_hi, "%.2f")) {
+            // 0 turns adaptive subdivision off; otherwise at least 1.5.
+            if (spec.split_threshold > 0 && spec.split_threshold < 1.5)
+                spec.split_threshold = spec.split_threshold < 0.75 ? 0.0 : 1.5;
+            changed = true;
+        }
+        ImGui::Checkbox("outline", &show_outline_);
+        ImGui::SameLine();
+        ImGui::Checkbox("regrow on change", &regrow_on_change_);
+        ImGui::SameLine();
+        if (ImGui::Button("grow") || (changed && regrow_on_change_)) {
+            show_flow_ = true;
+            request_flow();
+        }
+        if (grower_->busy()) {
+            ImGui::Text("growing...");
+        } else if (flow_) {
+            const FlowVolume& fv = *flow_->volume;
+            ImGui::Text("layers %zu / %zu, %zu tets", layers_shown_, fv.layer_tets.size(),
+                        fv.mesh.num_tets());
+            ImGui::Text("%zu particles inserted, %zu stopped; grown in %.0f ms",
+                        fv.particles_inserted, fv.particles_stopped, flow_->grow_ms);
+        }
+        if (flow_error_) {
+            ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 400);
+            ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", flow_error_->message.c_str());
+            ImGui::PopTextWrapPos();
+        }
+    }
+
+    // The panel's dye polygon, outlined in yellow over the picture (drawn with the panel).
+    void seed_outline() {
+        if (!locator_)
+            locator_ = std::make_unique<PointLocator>(vs_.flow->loaded.tets, vs_.flow->adjacency);
+        const auto corners = seed_polygon(*vs_.flow, *locator_, flow_spec_);
+        if (!corners) return;
+        const ImVec2 display = ImGui::GetIO().DisplaySize;
+        const CameraFrame frame(camera_, std::max(1, int(display.x)), std::max(1, int(display.y)));
+        ImVec2 points[4];
+        for (int i = 0; i < 4; ++i) {
+            const Vec3 p = frame.project((*corners)[i]);
+            if (!frame.orthographic() && !(p.z > 0)) return;  // behind the eye
+            points[i] = ImVec2(float(p.x), float(p.y));
+        }
+        ImGui::GetBackgroundDrawList()->AddPolyline(points, 4, IM_COL32(255, 230, 80, 255),
+                                                    ImDrawFlags_Closed, 2.0f);
     }
 
     // The opacity curve: points dragged with the left button, a double click adds one, a right
@@ -451,12 +668,18 @@ class Viewer {
             }
             ImGui::EndCombo();
         }
+        flow_panel();
         ImGui::Separator();
         const double frame = frame_ms_.mean();
         ImGui::Text("frame %.1f ms (%.1f fps)", frame, frame > 0 ? 1000.0 / frame : 0.0);
-        ImGui::Text("sort %.1f ms (%s)  classify %.1f ms  raster %.1f ms", sort_ms_,
-                    order_current_ ? "current" : "previous view", last_stats_.classify_ms,
-                    last_stats_.raster_ms);
+        if (show_flow_) {
+            ImGui::Text("no sort (one dye colour)  classify %.1f ms  raster %.1f ms",
+                        last_stats_.classify_ms, last_stats_.raster_ms);
+        } else {
+            ImGui::Text("sort %.1f ms (%s)  classify %.1f ms  raster %.1f ms", sort_ms_,
+                        order_current_ ? "current" : "previous view", last_stats_.classify_ms,
+                        last_stats_.raster_ms);
+        }
         ImGui::Text("cells %zu, drawn %zu", last_stats_.cells, last_stats_.cells_drawn);
         if (!status_.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", status_.c_str());
         ImGui::TextDisabled("? lists the keys");
@@ -469,6 +692,7 @@ class Viewer {
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
         if (show_panel_) panel();
+        if (show_panel_ && show_flow_ && show_outline_ && vs_.flow) seed_outline();
         if (show_keys_) {
             ImGui::SetNextWindowPos(ImVec2(10, ImGui::GetIO().DisplaySize.y - 40),
                                     ImGuiCond_Always);
@@ -484,6 +708,7 @@ class Viewer {
     ViewerScene& vs_;
     GLFWwindow* window_;
     gl::GlTetRenderer& renderer_;
+    gl::GlTetRenderer* active_ = &renderer_;  // the renderer whose frame is on screen
     SortWorker worker_;
     Camera camera_, home_;
     std::optional<Camera> requested_;
@@ -500,17 +725,34 @@ class Viewer {
     double mouse_x_ = 0, mouse_y_ = 0;
     bool keys_down_[GLFW_KEY_LAST + 1] = {};
     std::string status_;
+    // Flow volumes (when the mesh has a vector array): the panel's spec, the grower, the one on
+    // screen and its renderer, how many of its layers are drawn.
+    std::unique_ptr<FlowGrower> grower_;
+    FlowVolumeSpec flow_spec_;
+    bool show_flow_ = false, regrow_on_change_ = true;
+    std::uint64_t flow_request_ = 0;
+    std::shared_ptr<GrownFlowVolume> flow_;
+    std::optional<Error> flow_error_;
+    std::unique_ptr<gl::GlTetRenderer> dye_renderer_;
+    std::vector<CellId> dye_order_;  // 0..n-1
+    std::size_t layers_shown_ = 0;
+    bool show_outline_ = true;
+    bool headless_ = true;
+    std::unique_ptr<PointLocator> locator_;  // for the outline, made when first drawn
     // What the last volume frame showed.
     struct VolumeKey {
         Camera camera;
         std::uint64_t order_id;
         int tf_version, width, height;
+        std::uint64_t flow_id;
+        std::size_t flow_layers;
         bool operator==(const VolumeKey& o) const {
             return camera.position == o.camera.position &&
                    camera.focal_point == o.camera.focal_point &&
                    camera.view_up == o.camera.view_up &&
                    camera.parallel_scale == o.camera.parallel_scale && order_id == o.order_id &&
-                   tf_version == o.tf_version && width == o.width && height == o.height;
+                   tf_version == o.tf_version && width == o.width && height == o.height &&
+                   flow_id == o.flow_id && flow_layers == o.flow_layers;
         }
     };
     std::optional<VolumeKey> drawn_;
@@ -550,6 +792,17 @@ int run(const Args& args) {
     options.colormap = args.colormap;
     options.max_opacity = args.opacity;
     options.unit_distance = args.unit_distance;
+    if (!args.flowvol_vectors.empty()) {
+        FlowVolumeSpec spec = args.flow;
+        spec.vectors = args.flowvol_vectors;
+        spec.seed_center = Vec3(args.seed_center[0], args.seed_center[1], args.seed_center[2]);
+        spec.seed_width = args.seed_size[0];
+        spec.seed_height = args.seed_size[1];
+        if (!args.seed_normal.empty()) {
+            spec.seed_normal = Vec3(args.seed_normal[0], args.seed_normal[1], args.seed_normal[2]);
+        }
+        options.flow_volume = spec;
+    }
     const auto integrator = parse_integrator(args.integrator);
     if (!integrator || *integrator == Integrator::kExact) {
         std::fprintf(stderr,
@@ -591,6 +844,9 @@ int run(const Args& args) {
     ViewerScene vs = std::move(loaded).value();
     if (!vs.setup.note.empty())
         std::fprintf(stderr, "tetrender-view: note: %s\n", vs.setup.note.c_str());
+    if (vs.scene.flow_volume && vs.scene.flow_volume->context) {
+        std::fprintf(stderr, "tetrender-view: note: the flow volume's context veil is not drawn\n");
+    }
 
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
@@ -692,10 +948,45 @@ int main(int argc, char** argv) {
     app.add_option("--unit-distance", args.unit_distance,
                    "Unit distance of the opacities (default: the scene's, or diagonal / 20)")
         ->check(CLI::PositiveNumber);
+    auto* vectors = app.add_option("--flowvol-vectors", args.flowvol_vectors,
+                                   "Flow volume: grow the dye through this 3-component point "
+                                   "array (replaces a scene's flow_volume)");
+    auto* center =
+        app.add_option("--seed-center", args.seed_center, "Flow volume: dye polygon centre x,y,z")
+            ->expected(3)
+            ->delimiter(',')
+            ->needs(vectors);
+    auto* size =
+        app.add_option("--seed-size", args.seed_size, "Flow volume: dye polygon width,height")
+            ->expected(2)
+            ->delimiter(',')
+            ->check(CLI::PositiveNumber)
+            ->needs(vectors);
+    vectors->needs(center)->needs(size);
+    app.add_option("--seed-normal", args.seed_normal,
+                   "Flow volume: dye polygon normal x,y,z (default: the flow at its centre)")
+        ->expected(3)
+        ->delimiter(',')
+        ->needs(vectors);
+    app.add_option("--seed-res", args.flow.seed_resolution,
+                   "Flow volume: quads per side of the polygon (default 32)")
+        ->check(CLI::Range(1, 4096))
+        ->needs(vectors);
+    app.add_option("--steps", args.flow.steps, "Flow volume: layers (default 50)")
+        ->check(CLI::Range(1, 100000))
+        ->needs(vectors);
+    app.add_option("--dt", args.flow.dt, "Flow volume: time per layer (default 0.05)")
+        ->check(CLI::PositiveNumber)
+        ->needs(vectors);
+    app.add_option("--split-threshold", args.flow.split_threshold,
+                   "Flow volume: split front edges longer than this many seed spacings "
+                   "(default 2; 0: off)")
+        ->check(CLI::Number)
+        ->needs(vectors);
     app.add_flag("--panel-in-screenshot", args.panel_in_screenshot,
                  "Headless: draw the ImGui panel into the screenshot");
     app.add_option("--exit-after-frames", args.exit_after_frames,
-                   "Interactive mode: quit after N frames (for tests)")
+                   "Interactive mode: quit after N frames and any flow volume grown (for tests)")
         ->group("");
     try {
         app.parse(argc, argv);

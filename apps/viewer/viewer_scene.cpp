@@ -93,6 +93,29 @@ Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
     vs.arrays.push_back(kConstant);
     vs.input = std::move(loaded.input);
     const Bounds3 bounds = loaded.tets.bounds();
+    if (options.flow_volume) vs.scene.flow_volume = options.flow_volume;
+    if (std::vector<std::string> vectors = vector_arrays(loaded.tets); !vectors.empty()) {
+        // The sort's mesh may be convexified: flow volumes grow through a copy as loaded.
+        auto flow = std::make_unique<FlowDomain>();
+        flow->path = mesh_name;
+        flow->loaded.tets = loaded.tets;
+        flow->loaded.input.time_values = vs.input.time_values;
+        flow->loaded.input.time_step = vs.input.time_step;
+        flow->vector_arrays = std::move(vectors);
+        auto adjacency = build_face_adjacency(flow->loaded.tets);
+        if (!adjacency.ok()) return apps::with_where(adjacency.error(), mesh_name);
+        flow->adjacency = std::move(adjacency).value();
+        vs.flow = std::move(flow);
+    }
+    if (vs.scene.flow_volume) {
+        if (!vs.flow) {
+            return make_error(ErrorCode::kNotFound,
+                              "no 3-component point array '" + vs.scene.flow_volume->vectors +
+                                  "' (vector arrays: none)",
+                              mesh_name);
+        }
+        TR_TRY_STATUS(check_flow_spec(*vs.flow, *vs.scene.flow_volume));
+    }
     {
         auto setup = apps::prepare_sort(std::move(loaded.tets), options.sort);
         if (!setup.ok()) return apps::with_where(setup.error(), mesh_name);

@@ -4,12 +4,15 @@
 // file or, for a mesh file, made the way `tetrender render` quick mode makes its scene.
 
 #include <apps/sort_setup.h>
+#include <apps/viewer/viewer_flow.h>
 #include <core/result.h>
 #include <mesh/surface_mesh.h>
 #include <mesh/unstructured_mesh.h>
 #include <project/scene.h>
 #include <project/transfer_function.h>
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +28,8 @@ struct ViewerOptions {
     int width = 960, height = 600;  // mesh mode (a scene file gives its own unless --size)
     bool size_given = false;
     SortMethod sort = SortMethod::kAuto;
+    // A flow volume from the command line; replaces a scene's `flow_volume` key.
+    std::optional<FlowVolumeSpec> flow_volume;
 };
 
 // The editable transfer function: a colour map spread over [lo, hi] and opacity points.
@@ -47,10 +52,14 @@ struct ViewerScene {
     double longest_edge = 1;
     std::vector<SurfaceMesh> opaque;
     std::vector<Vec3> opaque_colors;
+    // The domain for flow volumes: only when the mesh has a 3-component point array. A flow
+    // volume to show at start is scene.flow_volume (the scene's key or the command line's).
+    std::unique_ptr<FlowDomain> flow;
 };
 
 // Loads everything. Errors as `tetrender render` words them (read_scene, load_tet_mesh, an
-// unknown array listing the available ones).
+// unknown array listing the available ones, a flow volume's vectors that are no vector array
+// of the mesh).
 Result<ViewerScene> load_viewer_scene(const ViewerOptions& options);
 
 // Switches to array `name` (a point or cell array of the mesh, magnitude of vectors): the

@@ -19,6 +19,11 @@ constexpr int kFloatsPerVertex = 6;    // x, y (pixels), thickness, s_front, s_b
 constexpr int kVerticesPerCell = 5;    // the thick vertex, then the hull (4th repeated if 3)
 constexpr int kIndicesPerCell = 12;    // four triangles around the thick vertex
 constexpr float kNoSurface = 3.0e38f;  // ray parameter where no opaque surface is
+// A perspective corner projected farther than this many times (width + height) pixels from the
+// image centre sends its cell to the exact path: seen from the eye, it lies within about 1-3
+// degrees of the eye's plane (90-30 degree views), where single-precision screen positions and
+// attributes of the projected triangles stop being trustworthy.
+constexpr double kExactGuard = 16.0;
 
 const char* kVolumeVs = R"(#version 330 core
 layout(location = 0) in vec2 a_pos;
@@ -40,11 +45,9 @@ void main() {
 }
 )";
 
-const char* kVolumeFs = R"(#version 330 core
-noperspective in float v_u;
-noperspective in float v_sf;
-noperspective in float v_sb;
-noperspective in float v_tf;
+// Colour and opacity of one segment (front scalar, back scalar, length): the integrators'
+// lookups, shared by the projected and the exact cells' fragment shaders.
+const char* kShadeGlsl = R"(
 uniform int u_mode;  // 0: exp texture, 1: pre-integrated
 uniform sampler1D u_tf;  // rgb: colour, a: extinction, over [u_s_lo, u_s_hi]
 uniform sampler2D u_exp;
@@ -64,6 +67,30 @@ float grid(float x, float n) { return (clamp(x, 0.0, n - 1.0) + 0.5) / n; }
 vec4 tf(float s) {
     return texture(u_tf, grid((s - u_s_lo) / (u_s_hi - u_s_lo) * (u_tf_size - 1.0), u_tf_size));
 }
+// Premultiplied colour and opacity of a segment of length u > 0.
+vec4 shade(float sf, float sb, float u) {
+    if (u_mode == 0) {
+        if (!(u_kappa_max > 0.0)) return vec4(0.0);
+        float v = 0.5 * (tf(sf).a + tf(sb).a);
+        float x = u / u_max_len * (u_exp_size - 1.0);
+        float y = v / u_kappa_max * (u_exp_size - 1.0);
+        float alpha = texture(u_exp, vec2(grid(x, u_exp_size), grid(y, u_exp_size))).r;
+        return vec4(tf(0.5 * (sf + sb)).rgb * alpha, alpha);
+    }
+    float scale = (u_pre_scalars - 1.0) / (u_s_hi - u_s_lo);
+    float x = (sf - u_s_lo) * scale;
+    float y = (sb - u_s_lo) * scale;
+    float z = u / u_max_len * (u_pre_lengths - 1.0);
+    return texture(u_pre, vec3(grid(z, u_pre_lengths), grid(y, u_pre_scalars),
+                               grid(x, u_pre_scalars)));
+}
+)";
+
+const char* kVolumeFsMain = R"(
+noperspective in float v_u;
+noperspective in float v_sf;
+noperspective in float v_sb;
+noperspective in float v_tf;
 void main() {
     float u = v_u, sf = v_sf, sb = v_sb;
     float room = texelFetch(u_opaque_t, ivec2(gl_FragCoord.xy), 0).r - v_tf;
@@ -73,21 +100,49 @@ void main() {
         u = room;
     }
     if (!(u > 0.0)) discard;
-    if (u_mode == 0) {
-        if (!(u_kappa_max > 0.0)) discard;
-        float v = 0.5 * (tf(sf).a + tf(sb).a);
-        float x = u / u_max_len * (u_exp_size - 1.0);
-        float y = v / u_kappa_max * (u_exp_size - 1.0);
-        float alpha = texture(u_exp, vec2(grid(x, u_exp_size), grid(y, u_exp_size))).r;
-        o_color = vec4(tf(0.5 * (sf + sb)).rgb * alpha, alpha);
-    } else {
-        float scale = (u_pre_scalars - 1.0) / (u_s_hi - u_s_lo);
-        float x = (sf - u_s_lo) * scale;
-        float y = (sb - u_s_lo) * scale;
-        float z = u / u_max_len * (u_pre_lengths - 1.0);
-        o_color = texture(u_pre, vec3(grid(z, u_pre_lengths), grid(y, u_pre_scalars),
-                                      grid(x, u_pre_scalars)));
+    if (u_mode == 0 && !(u_kappa_max > 0.0)) discard;
+    o_color = shade(sf, sb, u);
+}
+)";
+
+// A cell reaching behind a perspective eye (or too close to it to project): a rectangle over
+// the screen where its part in front of the eye may be, each pixel's ray clipped exactly
+// against the cell's four face planes (eye-relative), at the eye and at the opaque surface.
+const char* kExactVs = R"(#version 330 core
+uniform vec4 u_rect;  // x0, y0, x1, y1 in normalized device coordinates
+void main() {
+    gl_Position = vec4((gl_VertexID & 1) != 0 ? u_rect.z : u_rect.x,
+                       (gl_VertexID & 2) != 0 ? u_rect.w : u_rect.y, -1.0, 1.0);
+}
+)";
+
+const char* kExactFsMain = R"(
+uniform vec4 u_plane[4];  // unit outward normal n, and offset - n . eye: n . x = w outside < 0
+uniform vec4 u_scalar;    // the scalar's gradient, and the scalar at the eye
+uniform vec3 u_dir0;      // the ray direction at image point (0, 0), over its forward part
+uniform vec3 u_dir_x;     // its change per pixel along x and along y (row 0 at the top)
+uniform vec3 u_dir_y;
+uniform float u_height;
+void main() {
+    vec3 dir = normalize(u_dir0 + gl_FragCoord.x * u_dir_x +
+                         (u_height - gl_FragCoord.y) * u_dir_y);
+    float t_in = 0.0;
+    float t_out = texelFetch(u_opaque_t, ivec2(gl_FragCoord.xy), 0).r;
+    for (int k = 0; k < 4; ++k) {
+        float denom = dot(u_plane[k].xyz, dir);
+        float num = u_plane[k].w;
+        if (denom < 0.0) {
+            t_in = max(t_in, num / denom);
+        } else if (denom > 0.0) {
+            t_out = min(t_out, num / denom);
+        } else if (num < 0.0) {
+            discard;
+        }
     }
+    if (!(t_out > t_in)) discard;
+    if (u_mode == 0 && !(u_kappa_max > 0.0)) discard;
+    float slope = dot(u_scalar.xyz, dir);
+    o_color = shade(u_scalar.w + t_in * slope, u_scalar.w + t_out * slope, t_out - t_in);
 }
 )";
 
@@ -182,6 +237,96 @@ Result<GLuint> link(const char* vs, const char* fs, const char* name) {
     return program;
 }
 
+// What the exact fragment shader needs of one cell (its place in the order, its rectangle on
+// screen, its planes and scalar relative to the eye), in single precision as GL takes it.
+struct ExactCell {
+    std::size_t index;  // in the order
+    float rect[4];      // x0, y0, x1, y1 in normalized device coordinates
+    float planes[16];   // per face: unit outward normal, offset - normal . eye
+    float scalar[4];    // gradient, scalar at the eye
+};
+
+// Whether cell `t` takes the exact path: a corner at or behind a perspective eye (the CPU
+// renderer's test), or projected so far outside the image (a corner just in front of the eye)
+// that single-precision screen positions and attributes would not hold it.
+bool needs_exact(const TetMesh& mesh, CellId t, const CameraFrame& camera) {
+    const double guard = kExactGuard * (camera.width() + camera.height());
+    for (PointId p : mesh.tet(t)) {
+        const Vec3 q = camera.project(mesh.point(p));
+        if (q.z <= 0) return true;
+        if (std::abs(q.x - 0.5 * camera.width()) > guard) return true;
+        if (std::abs(q.y - 0.5 * camera.height()) > guard) return true;
+    }
+    return false;
+}
+
+// The exact cell of order index `index` (tet `t`): its screen rectangle, planes and scalar.
+// False when nothing of it in front of the eye reaches the image (or the tet is degenerate).
+// The part of the tet in front of the eye projects to the convex hull of its front corners'
+// images and of the directions (right, up parts) of the points where it meets the eye's plane:
+// a direction with a positive right part makes the rectangle reach the image's right edge, and
+// so on; one with neither part (the eye on the tet's boundary or inside it) the whole image.
+bool exact_cell(const TetMesh& mesh, std::span<const float> scalar, CellId t, std::size_t index,
+                const CameraFrame& camera, ExactCell& out) {
+    const Vec3& eye = camera.eye();
+    const Tet& tet = mesh.tet(t);
+    Vec3 d[4];
+    double z[4];
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
+    bool front = false;
+    for (int k = 0; k < 4; ++k) {
+        d[k] = mesh.point(tet[k]) - eye;
+        z[k] = glm::dot(d[k], camera.forward());
+        if (z[k] > 0) {
+            const Vec3 q = camera.project(mesh.point(tet[k]));
+            x0 = std::min(x0, q.x), x1 = std::max(x1, q.x);
+            y0 = std::min(y0, q.y), y1 = std::max(y1, q.y);
+            front = true;
+        }
+    }
+    if (!front) return false;
+    for (int a = 0; a < 4; ++a) {
+        if (z[a] > 0) continue;
+        for (int b = 0; b < 4; ++b) {
+            if (!(z[b] > 0)) continue;
+            const Vec3 q = d[a] + (d[b] - d[a]) * (-z[a] / (z[b] - z[a]));
+            const double right = glm::dot(q, camera.right()), up = glm::dot(q, camera.up());
+            if (right == 0 && up == 0) x0 = y0 = -kInf, x1 = y1 = kInf;
+            if (right > 0) x1 = kInf;
+            if (right < 0) x0 = -kInf;
+            if (up > 0) y0 = -kInf;  // image rows go down
+            if (up < 0) y1 = kInf;
+        }
+    }
+    const double w = camera.width(), h = camera.height();
+    // Pixels whose centres may be inside, padded by a pixel (the fragment shader decides).
+    x0 = std::clamp(std::floor(x0) - 1.0, 0.0, w), x1 = std::clamp(std::ceil(x1) + 1.0, 0.0, w);
+    y0 = std::clamp(std::floor(y0) - 1.0, 0.0, h), y1 = std::clamp(std::ceil(y1) + 1.0, 0.0, h);
+    if (!(x1 > x0) || !(y1 > y0)) return false;
+    const TetPlanes planes = tet_planes(mesh, scalar, t);
+    for (int k = 0; k < 4; ++k) {
+        const double len = glm::length(planes.normals[k]);
+        if (!(len > 0)) return false;
+        const Vec3 n = planes.normals[k] / len;
+        out.planes[4 * k + 0] = static_cast<float>(n.x);
+        out.planes[4 * k + 1] = static_cast<float>(n.y);
+        out.planes[4 * k + 2] = static_cast<float>(n.z);
+        out.planes[4 * k + 3] =
+            static_cast<float>((planes.offsets[k] - glm::dot(planes.normals[k], eye)) / len);
+    }
+    out.index = index;
+    out.rect[0] = static_cast<float>(2 * x0 / w - 1);
+    out.rect[1] = static_cast<float>(1 - 2 * y1 / h);
+    out.rect[2] = static_cast<float>(2 * x1 / w - 1);
+    out.rect[3] = static_cast<float>(1 - 2 * y0 / h);
+    out.scalar[0] = static_cast<float>(planes.gradient.x);
+    out.scalar[1] = static_cast<float>(planes.gradient.y);
+    out.scalar[2] = static_cast<float>(planes.gradient.z);
+    out.scalar[3] = static_cast<float>(planes.s0 + glm::dot(planes.gradient, eye - planes.p0));
+    return true;
+}
+
 }  // namespace
 
 Result<GlContextInfo> check_gl_context() {
@@ -208,7 +353,8 @@ Result<GlContextInfo> check_gl_context() {
 }
 
 struct GlTetRenderer::State {
-    GLuint volume_program = 0, opaque_program = 0;
+    GLuint volume_program = 0, opaque_program = 0, exact_program = 0;
+    GLuint exact_vao = 0;  // no attributes: the exact shader's quad comes from gl_VertexID
     GLuint volume_vao = 0, volume_vbo = 0, volume_ibo = 0;
     std::size_t ibo_cells = 0;  // cells the index buffer covers
     GLuint opaque_vao = 0, opaque_vbo = 0;
@@ -221,6 +367,8 @@ struct GlTetRenderer::State {
     const TetMesh* mesh = nullptr;
     std::vector<float> scalar;
     std::vector<float> staging;
+    std::vector<std::uint8_t> exact_flags;  // per index of the order: drawn exactly
+    std::vector<ExactCell> exact_cells;
     int mode = 0;
     SegmentShaderTables tables;
     std::unique_ptr<TransferFunction> tf;
@@ -266,8 +414,12 @@ Result<std::unique_ptr<GlTetRenderer>> GlTetRenderer::create() {
     std::unique_ptr<GlTetRenderer> r(new GlTetRenderer());
     r->state_ = std::make_unique<State>();
     State& s = *r->state_;
-    TR_TRY(s.volume_program, link(kVolumeVs, kVolumeFs, "volume"));
+    const std::string volume_fs = std::string("#version 330 core\n") + kShadeGlsl + kVolumeFsMain;
+    const std::string exact_fs = std::string("#version 330 core\n") + kShadeGlsl + kExactFsMain;
+    TR_TRY(s.volume_program, link(kVolumeVs, volume_fs.c_str(), "volume"));
     TR_TRY(s.opaque_program, link(kOpaqueVs, kOpaqueFs, "opaque"));
+    TR_TRY(s.exact_program, link(kExactVs, exact_fs.c_str(), "exact"));
+    glGenVertexArrays(1, &s.exact_vao);
     glGenVertexArrays(1, &s.volume_vao);
     glGenBuffers(1, &s.volume_vbo);
     glGenBuffers(1, &s.volume_ibo);
@@ -294,11 +446,13 @@ Result<std::unique_ptr<GlTetRenderer>> GlTetRenderer::create() {
     glGenTextures(1, &s.exp_tex);
     glGenTextures(1, &s.pre_tex);
     // Samplers: 0 transfer function, 1 exp texture, 2 pre-integrated, 3 opaque ray parameter.
-    glUseProgram(s.volume_program);
-    glUniform1i(glGetUniformLocation(s.volume_program, "u_tf"), 0);
-    glUniform1i(glGetUniformLocation(s.volume_program, "u_exp"), 1);
-    glUniform1i(glGetUniformLocation(s.volume_program, "u_pre"), 2);
-    glUniform1i(glGetUniformLocation(s.volume_program, "u_opaque_t"), 3);
+    for (const GLuint p : {s.volume_program, s.exact_program}) {
+        glUseProgram(p);
+        glUniform1i(glGetUniformLocation(p, "u_tf"), 0);
+        glUniform1i(glGetUniformLocation(p, "u_exp"), 1);
+        glUniform1i(glGetUniformLocation(p, "u_pre"), 2);
+        glUniform1i(glGetUniformLocation(p, "u_opaque_t"), 3);
+    }
     glUseProgram(0);
     if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
         return make_error(ErrorCode::kUnsupported,
@@ -312,8 +466,9 @@ GlTetRenderer::~GlTetRenderer() {
     State& s = *state_;
     glDeleteProgram(s.volume_program);
     glDeleteProgram(s.opaque_program);
-    const GLuint arrays[2] = {s.volume_vao, s.opaque_vao};
-    glDeleteVertexArrays(2, arrays);
+    glDeleteProgram(s.exact_program);
+    const GLuint arrays[3] = {s.volume_vao, s.opaque_vao, s.exact_vao};
+    glDeleteVertexArrays(3, arrays);
     const GLuint buffers[3] = {s.volume_vbo, s.volume_ibo, s.opaque_vbo};
     glDeleteBuffers(3, buffers);
     const GLuint textures[6] = {s.tf_tex, s.exp_tex, s.pre_tex, s.color_tex, s.t_tex, s.depth_tex};
@@ -431,6 +586,8 @@ GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const Ce
     const auto classify_start = std::chrono::steady_clock::now();
     const std::size_t n = order.size();
     s.staging.resize(n * kVerticesPerCell * kFloatsPerVertex);
+    s.exact_flags.assign(n, 0);
+    s.exact_cells.clear();
     std::atomic<std::size_t> drawn{0};
     if (s.mesh && n > 0) {
         const TetMesh& mesh = *s.mesh;
@@ -441,14 +598,11 @@ GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const Ce
             for (std::size_t i = begin; i < end; ++i) {
                 float* out = &s.staging[i * kVerticesPerCell * kFloatsPerVertex];
                 const CellId t = order[i];
-                bool ok = true;
-                if (!orthographic) {
-                    for (PointId p : mesh.tet(t)) {
-                        if (glm::dot(mesh.point(p) - camera.eye(), camera.forward()) <= 0) {
-                            ok = false;
-                        }
-                    }
-                }
+                // Cells reaching behind the eye (or too close to it to project) are drawn
+                // exactly per pixel instead, in their place in the order.
+                const bool exact = !orthographic && needs_exact(mesh, t, camera);
+                s.exact_flags[i] = exact ? 1 : 0;
+                bool ok = !exact;
                 StProjection st;
                 if (ok) {
                     const TetPlanes planes = tet_planes(mesh, scalar, t);
@@ -474,8 +628,14 @@ GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const Ce
             }
             drawn += local;
         });
+        for (std::size_t i = 0; i < n; ++i) {
+            ExactCell cell;
+            if (s.exact_flags[i] && exact_cell(mesh, scalar, order[i], i, camera, cell))
+                s.exact_cells.push_back(cell);
+        }
     }
-    stats.cells_drawn = drawn.load();
+    stats.cells_exact = s.exact_cells.size();
+    stats.cells_drawn = drawn.load() + s.exact_cells.size();
     stats.classify_ms = ms_since(classify_start);
 
     const auto raster_start = std::chrono::steady_clock::now();
@@ -551,22 +711,46 @@ GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const Ce
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     if (s.shader && n > 0) {
+        // The shading uniforms, the same in both programs.
+        for (const GLuint p : {s.volume_program, s.exact_program}) {
+            glUseProgram(p);
+            glUniform1i(glGetUniformLocation(p, "u_mode"), s.mode);
+            glUniform1f(glGetUniformLocation(p, "u_s_lo"), static_cast<float>(s.tables.s_lo));
+            glUniform1f(glGetUniformLocation(p, "u_s_hi"), static_cast<float>(s.tables.s_hi));
+            glUniform1f(glGetUniformLocation(p, "u_max_len"),
+                        static_cast<float>(s.tables.max_length));
+            glUniform1f(glGetUniformLocation(p, "u_kappa_max"),
+                        static_cast<float>(s.tables.kappa_max));
+            glUniform1f(glGetUniformLocation(p, "u_exp_size"),
+                        static_cast<float>(s.tables.exp_size));
+            glUniform1f(glGetUniformLocation(p, "u_pre_scalars"),
+                        static_cast<float>(s.tables.pre_scalars));
+            glUniform1f(glGetUniformLocation(p, "u_pre_lengths"),
+                        static_cast<float>(s.tables.pre_lengths));
+            glUniform1f(glGetUniformLocation(p, "u_tf_size"), static_cast<float>(kTfSize));
+        }
+        GLint rect_loc = -1, plane_loc = -1, scalar_loc = -1;
+        if (!s.exact_cells.empty()) {
+            // Pixel (x, y)'s ray direction, scaled to unit forward part, is linear in x and y.
+            const GLuint p = s.exact_program;
+            auto forward_scaled = [&](double x, double y) {
+                const Vec3 dir = camera.ray(x, y).direction;
+                return dir / glm::dot(dir, camera.forward());
+            };
+            const Vec3 dir0 = forward_scaled(0, 0);
+            set3(p, "u_dir0", dir0);
+            set3(p, "u_dir_x", (forward_scaled(w, 0) - dir0) / static_cast<double>(w));
+            set3(p, "u_dir_y", (forward_scaled(0, h) - dir0) / static_cast<double>(h));
+            glUniform1f(glGetUniformLocation(p, "u_height"), static_cast<float>(h));
+            rect_loc = glGetUniformLocation(p, "u_rect");
+            plane_loc = glGetUniformLocation(p, "u_plane");
+            scalar_loc = glGetUniformLocation(p, "u_scalar");
+        }
         const GLuint p = s.volume_program;
         glUseProgram(p);
         glUniform2f(glGetUniformLocation(p, "u_size"), static_cast<float>(w),
                     static_cast<float>(h));
         glUniform1f(glGetUniformLocation(p, "u_depth_scale"), depth_scale);
-        glUniform1i(glGetUniformLocation(p, "u_mode"), s.mode);
-        glUniform1f(glGetUniformLocation(p, "u_s_lo"), static_cast<float>(s.tables.s_lo));
-        glUniform1f(glGetUniformLocation(p, "u_s_hi"), static_cast<float>(s.tables.s_hi));
-        glUniform1f(glGetUniformLocation(p, "u_max_len"), static_cast<float>(s.tables.max_length));
-        glUniform1f(glGetUniformLocation(p, "u_kappa_max"), static_cast<float>(s.tables.kappa_max));
-        glUniform1f(glGetUniformLocation(p, "u_exp_size"), static_cast<float>(s.tables.exp_size));
-        glUniform1f(glGetUniformLocation(p, "u_pre_scalars"),
-                    static_cast<float>(s.tables.pre_scalars));
-        glUniform1f(glGetUniformLocation(p, "u_pre_lengths"),
-                    static_cast<float>(s.tables.pre_lengths));
-        glUniform1f(glGetUniformLocation(p, "u_tf_size"), static_cast<float>(kTfSize));
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_1D, s.tf_tex);
         glActiveTexture(GL_TEXTURE1);
@@ -579,8 +763,29 @@ GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const Ce
         glBindBuffer(GL_ARRAY_BUFFER, s.volume_vbo);
         glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.staging.size() * sizeof(float)),
                      s.staging.data(), GL_STREAM_DRAW);
-        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(n * kIndicesPerCell), GL_UNSIGNED_INT,
-                       nullptr);
+        // The projected cells in batches between the exact ones, each exact cell in its place
+        // (blending is order-dependent). Exact fragments sit at depth 0: the opaque surfaces
+        // cut them in the shader.
+        std::size_t next = 0;  // the first projected cell not yet drawn
+        auto draw_projected = [&](std::size_t end) {
+            if (end <= next) return;
+            glUseProgram(s.volume_program);
+            glBindVertexArray(s.volume_vao);
+            glDrawElements(
+                GL_TRIANGLES, static_cast<GLsizei>((end - next) * kIndicesPerCell), GL_UNSIGNED_INT,
+                reinterpret_cast<const void*>(next * kIndicesPerCell * sizeof(std::uint32_t)));
+        };
+        for (const ExactCell& cell : s.exact_cells) {
+            draw_projected(cell.index);
+            glUseProgram(s.exact_program);
+            glBindVertexArray(s.exact_vao);
+            glUniform4fv(rect_loc, 1, cell.rect);
+            glUniform4fv(plane_loc, 4, cell.planes);
+            glUniform4fv(scalar_loc, 1, cell.scalar);
+            glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+            next = cell.index + 1;
+        }
+        draw_projected(n);
         glBindTexture(GL_TEXTURE_2D, 0);
         glActiveTexture(GL_TEXTURE0);
     }

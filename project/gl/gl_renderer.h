@@ -14,7 +14,15 @@
 // drawn with the depth test on, no depth write, premultiplied blending (ONE,
 // ONE_MINUS_SRC_ALPHA), into an offscreen float framebuffer.
 //
-// Not drawn: cells reaching behind a perspective eye (the CPU renderer clips them exactly).
+// Cells reaching behind a perspective eye (a corner at or behind the eye's plane, the test that
+// sends a cell to the CPU renderer's exact path) or too close to it to project (a corner more
+// than 16 (width + height) pixels from the image) are drawn exactly per pixel instead, in their
+// place in the order (the projected cells are drawn in batches between them): a rectangle
+// covering the screen where the cell's part in front of the eye may be (all of it when the
+// cell holds the eye), and per fragment the pixel centre's ray (CameraFrame::pixel_ray)
+// clipped against the cell's four face planes, at the eye and at the opaque surface, the
+// scalar linear along it, shaded with the same textures. Cost: a draw call and a fragment per
+// pixel of the rectangle for each such cell (the cells around the eye; none orthographic).
 //
 // Every call needs a current OpenGL >= 3.3 core context (GLFW or any other); GL headers stay
 // in the .cpp. Not thread-safe: use from the context's thread.
@@ -49,7 +57,8 @@ Result<GlContextInfo> check_gl_context();
 
 struct GlFrameStats {
     std::size_t cells = 0;        // cells in the order
-    std::size_t cells_drawn = 0;  // classified with area on screen
+    std::size_t cells_drawn = 0;  // classified with area on screen, or drawn exactly
+    std::size_t cells_exact = 0;  // of those, drawn exactly per pixel (around the eye)
     double classify_ms = 0;       // CPU: projection, classification, vertex streaming
     double raster_ms = 0;         // GL: upload and draw, until finished (glFinish)
 };

@@ -13,6 +13,7 @@
 #include <project/scene.h>
 #include <sort/visibility_sort.h>
 #include <tests/apps/cli_runner.h>
+#include <tests/viewer/viewer_fixtures.h>
 #include <tests/viewer/viewer_runner.h>
 
 #include <gtest/gtest.h>
@@ -44,54 +45,19 @@ struct TestScene {
 TestScene make_test_scene(int n = 14) {
     TestScene t;
     t.dir = testing::make_temp_dir();
-    std::vector<Vec3> points;
+    TetMesh mesh = testing::freudenthal_box(n, n, n, Vec3(-1.0), Vec3(1.0));
     std::vector<float> blob;
-    auto id = [&](int i, int j, int k) {
-        return static_cast<PointId>((k * (n + 1) + j) * (n + 1) + i);
-    };
-    for (int k = 0; k <= n; ++k) {
-        for (int j = 0; j <= n; ++j) {
-            for (int i = 0; i <= n; ++i) {
-                const Vec3 p(-1.0 + 2.0 * i / n, -1.0 + 2.0 * j / n, -1.0 + 2.0 * k / n);
-                points.push_back(p);
-                const double r2 = glm::dot(p - Vec3(0.2, -0.1, 0.1), p - Vec3(0.2, -0.1, 0.1));
-                blob.push_back(static_cast<float>(std::exp(-2.0 * r2) + 0.25 * std::sin(3 * p.x)));
-            }
-        }
+    for (const Vec3& p : mesh.points()) {
+        const double r2 = glm::dot(p - Vec3(0.2, -0.1, 0.1), p - Vec3(0.2, -0.1, 0.1));
+        blob.push_back(static_cast<float>(std::exp(-2.0 * r2) + 0.25 * std::sin(3 * p.x)));
     }
-    std::vector<Tet> tets;
-    const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-    for (int k = 0; k < n; ++k) {
-        for (int j = 0; j < n; ++j) {
-            for (int i = 0; i < n; ++i) {
-                for (const auto& path : paths) {
-                    int c[3] = {i, j, k};
-                    Tet tet;
-                    tet[0] = id(c[0], c[1], c[2]);
-                    for (int s = 0; s < 3; ++s) {
-                        ++c[path[s]];
-                        tet[s + 1] = id(c[0], c[1], c[2]);
-                    }
-                    tets.push_back(tet);
-                }
-            }
-        }
-    }
-    auto mesh = TetMesh::create(std::move(points), std::move(tets));
-    EXPECT_TRUE(mesh.ok());
-    EXPECT_TRUE(mesh->add_point_field(make_float_field("blob", 1, blob)).ok());
+    EXPECT_TRUE(mesh.add_point_field(make_float_field("blob", 1, blob)).ok());
     t.mesh = t.dir + "/cube.vtu";
-    EXPECT_TRUE(write_vtu(*mesh, t.mesh).ok());
+    EXPECT_TRUE(write_vtu(mesh, t.mesh).ok());
     // The cylinder as OFF.
     const SurfaceMesh cylinder = make_cylinder_surface(0.3, -0.6, 0.6, 24);
     t.cylinder = t.dir + "/cylinder.off";
-    {
-        std::ofstream off(t.cylinder);
-        off << "OFF\n" << cylinder.points.size() << " " << cylinder.triangles.size() << " 0\n";
-        for (const Vec3& p : cylinder.points) off << p.x << " " << p.y << " " << p.z << "\n";
-        for (const auto& tri : cylinder.triangles)
-            off << "3 " << tri[0] << " " << tri[1] << " " << tri[2] << "\n";
-    }
+    testing::write_off(cylinder, t.cylinder);
     t.scene = t.dir + "/scene.json";
     std::ofstream scene(t.scene);
     scene << R"({
@@ -110,51 +76,10 @@ TestScene make_test_scene(int n = 14) {
     return t;
 }
 
-// The CPU renderer's picture of `scene_path` (projected tetrahedra over the opaque surfaces).
-Image cpu_picture(const std::string& scene_path, Integrator integrator) {
-    auto scene = read_scene(scene_path);
-    EXPECT_TRUE(scene.ok());
-    auto loaded = apps::load_tet_mesh(scene->mesh.string(), {});
-    EXPECT_TRUE(loaded.ok());
-    auto setup = apps::prepare_sort(std::move(loaded->tets), SortMethod::kAuto);
-    EXPECT_TRUE(setup.ok());
-    auto scalar = point_scalar(setup->mesh, scene->scalar);
-    EXPECT_TRUE(scalar.ok());
-    scalar->resize(setup->mesh.num_points(), 0.0f);
-    const CameraFrame frame(scene->camera, scene->width, scene->height);
-    VisibilitySorter sorter;
-    std::vector<CellId> order;
-    sorter.sort(setup->mesh, setup->adjacency, SortView::from_camera(frame), setup->method, order);
-    const SegmentShader shader(scene->transfer_function, integrator, longest_edge(setup->mesh));
-    std::vector<SurfaceMesh> surfaces;
-    std::vector<OpaqueSurface> opaque;
-    for (const OpaqueSpec& spec : scene->opaque) {
-        auto surface = read_surface(spec.file);
-        EXPECT_TRUE(surface.ok());
-        surfaces.push_back(std::move(surface).value());
-    }
-    for (std::size_t i = 0; i < surfaces.size(); ++i)
-        opaque.push_back({&surfaces[i], scene->opaque[i].color});
-    const OpaqueLayer layer = render_opaque(opaque, frame, scene->background);
-    RenderInputs in;
-    in.mesh = &setup->mesh;
-    in.scalar = *scalar;
-    in.order = order;
-    in.shader = &shader;
-    in.camera = &frame;
-    in.background = scene->background;
-    in.opaque_color = &layer.color;
-    in.opaque_depth = &layer.depth;
-    return render_projected_tetrahedra(in);
-}
+using testing::cpu_picture;
 
 // Writes a diff image beside `path` when a comparison fails.
-void write_diff(const Image& a, const Image& b, const std::string& path) {
-    Image diff(a.width, a.height);
-    for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i)
-        diff.pixels[i] = glm::abs(a.pixels[i] - b.pixels[i]) * 4.0f;
-    (void)write_png(diff, path);
-}
+using testing::write_diff;
 
 class GlVersusCpu : public ::testing::TestWithParam<Integrator> {};
 

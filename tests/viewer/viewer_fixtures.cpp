@@ -1,0 +1,108 @@
+#include <apps/cli_common.h>
+#include <apps/sort_setup.h>
+#include <io/read_surface.h>
+#include <io/write_image.h>
+#include <mesh/point_data.h>
+#include <project/cpu_renderer.h>
+#include <project/opaque_geometry.h>
+#include <project/scene.h>
+#include <sort/visibility_sort.h>
+#include <tests/viewer/viewer_fixtures.h>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <vector>
+
+namespace tr::testing {
+
+TetMesh freudenthal_box(int nx, int ny, int nz, const Vec3& lo, const Vec3& hi) {
+    std::vector<Vec3> points;
+    auto id = [&](int i, int j, int k) {
+        return static_cast<PointId>((k * (ny + 1) + j) * (nx + 1) + i);
+    };
+    const Vec3 step = (hi - lo) / Vec3(nx, ny, nz);
+    for (int k = 0; k <= nz; ++k) {
+        for (int j = 0; j <= ny; ++j) {
+            for (int i = 0; i <= nx; ++i) points.push_back(lo + Vec3(i, j, k) * step);
+        }
+    }
+    std::vector<Tet> tets;
+    const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    for (int k = 0; k < nz; ++k) {
+        for (int j = 0; j < ny; ++j) {
+            for (int i = 0; i < nx; ++i) {
+                for (const auto& path : paths) {
+                    int c[3] = {i, j, k};
+                    Tet tet;
+                    tet[0] = id(c[0], c[1], c[2]);
+                    for (int s = 0; s < 3; ++s) {
+                        ++c[path[s]];
+                        tet[s + 1] = id(c[0], c[1], c[2]);
+                    }
+                    tets.push_back(tet);
+                }
+            }
+        }
+    }
+    auto mesh = TetMesh::create(std::move(points), std::move(tets));
+    EXPECT_TRUE(mesh.ok());
+    return std::move(mesh).value();
+}
+
+void write_off(const SurfaceMesh& surface, const std::string& path) {
+    std::ofstream off(path);
+    off << "OFF\n" << surface.points.size() << " " << surface.triangles.size() << " 0\n";
+    for (const Vec3& p : surface.points) off << p.x << " " << p.y << " " << p.z << "\n";
+    for (const auto& tri : surface.triangles) {
+        off << "3 " << tri[0] << " " << tri[1] << " " << tri[2] << "\n";
+    }
+}
+
+void write_diff(const Image& a, const Image& b, const std::string& path) {
+    Image diff(a.width, a.height);
+    for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
+        diff.pixels[i] = glm::abs(a.pixels[i] - b.pixels[i]) * 4.0f;
+    }
+    (void)write_png(diff, path);
+}
+
+Image cpu_picture(const std::string& scene_path, Integrator integrator) {
+    auto scene = read_scene(scene_path);
+    EXPECT_TRUE(scene.ok());
+    auto loaded = apps::load_tet_mesh(scene->mesh.string(), {});
+    EXPECT_TRUE(loaded.ok());
+    auto setup = apps::prepare_sort(std::move(loaded->tets), SortMethod::kAuto);
+    EXPECT_TRUE(setup.ok());
+    auto scalar = point_scalar(setup->mesh, scene->scalar);
+    EXPECT_TRUE(scalar.ok());
+    scalar->resize(setup->mesh.num_points(), 0.0f);
+    const CameraFrame frame(scene->camera, scene->width, scene->height);
+    VisibilitySorter sorter;
+    std::vector<CellId> order;
+    sorter.sort(setup->mesh, setup->adjacency, SortView::from_camera(frame), setup->method, order);
+    const SegmentShader shader(scene->transfer_function, integrator, longest_edge(setup->mesh));
+    std::vector<SurfaceMesh> surfaces;
+    std::vector<OpaqueSurface> opaque;
+    for (const OpaqueSpec& spec : scene->opaque) {
+        auto surface = read_surface(spec.file);
+        EXPECT_TRUE(surface.ok());
+        surfaces.push_back(std::move(surface).value());
+    }
+    for (std::size_t i = 0; i < surfaces.size(); ++i) {
+        opaque.push_back({&surfaces[i], scene->opaque[i].color});
+    }
+    const OpaqueLayer layer = render_opaque(opaque, frame, scene->background);
+    RenderInputs in;
+    in.mesh = &setup->mesh;
+    in.scalar = *scalar;
+    in.order = order;
+    in.shader = &shader;
+    in.camera = &frame;
+    in.background = scene->background;
+    in.opaque_color = &layer.color;
+    in.opaque_depth = &layer.depth;
+    return render_projected_tetrahedra(in);
+}
+
+}  // namespace tr::testing
