@@ -33,5 +33,13 @@ function(tr_add_test name)
   target_compile_definitions(${name} PRIVATE
     TETRENDER_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     TETRENDER_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data")
-  gtest_discover_tests(${name} PROPERTIES LABELS "${ARG_LABELS}" DISCOVERY_TIMEOUT 60)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60)
+  # Labels go on the discovered tests from a script ctest reads after the discovery's own:
+  # passed through gtest_discover_tests' PROPERTIES, a list keeps only its first label.
+  set(label_script ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
+  file(WRITE ${label_script}
+       "if(NOT \"\${${name}_TESTS}\" STREQUAL \"\")\n"
+       "  set_tests_properties(\${${name}_TESTS} PROPERTIES LABELS \"${ARG_LABELS}\")\n"
+       "endif()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${label_script})
 endfunction()
