@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds tetrender and renders the built-in demo (DIR/demo.png,
-# and the demo mesh as DIR/demo.vtu).
+# the demo mesh as DIR/demo.vtu, and its flow volume as DIR/demo_flowvol.png).
 # Usage: scripts/demo.sh [-o DIR]   (outputs go to DIR, default out/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,3 +19,4 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$(nproc)" --target tetrender
 mkdir -p "$out"
 build/apps/tetrender demo -o "$out/demo.png" --mesh-out "$out/demo.vtu"
+build/apps/tetrender demo --flowvol -o "$out/demo_flowvol.png"
