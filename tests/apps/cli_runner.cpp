@@ -43,13 +43,13 @@ bool require_shared_data() {
     return false;
 }
 
-CliRun run_cli(const std::string& args) {
+CliRun run_captured(const std::string& command) {
     const std::string dir = make_temp_dir();
     const std::string out = dir + "/out.txt";
     const std::string err = dir + "/err.txt";
-    const std::string command = shell_quote(TETRENDER_CLI_PATH) + " " + args + " >" +
-                                shell_quote(out) + " 2>" + shell_quote(err) + " </dev/null";
-    const int status = std::system(command.c_str());
+    const std::string line =
+        command + " >" + shell_quote(out) + " 2>" + shell_quote(err) + " </dev/null";
+    const int status = std::system(line.c_str());
     CliRun run;
     run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     auto slurp = [](const std::string& path) {
@@ -62,6 +62,10 @@ CliRun run_cli(const std::string& args) {
     run.err = slurp(err);
     std::filesystem::remove_all(dir);
     return run;
+}
+
+CliRun run_cli(const std::string& args) {
+    return run_captured(shell_quote(TETRENDER_CLI_PATH) + " " + args);
 }
 
 }  // namespace tr::testing

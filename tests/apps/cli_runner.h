@@ -14,6 +14,10 @@ struct CliRun {
 // Runs `tetrender <args>` (args is shell-quoted by the caller) and captures its output.
 CliRun run_cli(const std::string& args);
 
+// Runs a shell command line (quoted by the caller) with stdin empty, capturing its exit code
+// (128 + the signal when killed), stdout and stderr.
+CliRun run_captured(const std::string& command);
+
 // Single-quotes a string for the shell.
 std::string shell_quote(const std::string& s);
 

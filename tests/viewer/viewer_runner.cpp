@@ -25,8 +25,6 @@ namespace {
 
 ViewerRun run_viewer_once(const std::string& args, bool xvfb, const std::string& prefix) {
     const std::string dir = make_temp_dir();
-    const std::string out = dir + "/out.txt";
-    const std::string err = dir + "/err.txt";
     std::string command = prefix + " ";
     // The X authority file in our own folder: xvfb-run then makes no temporary folder of its
     // own, whose removal failed now and then on a busy machine (exit 5, "problem while
@@ -35,19 +33,7 @@ ViewerRun run_viewer_once(const std::string& args, bool xvfb, const std::string&
         command +=
             "xvfb-run -a -f " + shell_quote(dir + "/Xauthority") + " -s '-screen 0 1280x1024x24' ";
     }
-    command += shell_quote(TETRENDER_VIEW_PATH) + " " + args + " >" + shell_quote(out) + " 2>" +
-               shell_quote(err) + " </dev/null";
-    const int status = std::system(command.c_str());
-    ViewerRun run;
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    auto slurp = [](const std::string& path) {
-        std::ifstream in(path);
-        std::stringstream ss;
-        ss << in.rdbuf();
-        return ss.str();
-    };
-    run.out = slurp(out);
-    run.err = slurp(err);
+    const ViewerRun run = run_captured(command + shell_quote(TETRENDER_VIEW_PATH) + " " + args);
     std::filesystem::remove_all(dir);
     return run;
 }

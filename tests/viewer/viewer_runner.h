@@ -3,16 +3,13 @@
 // OpenGL 4.5 core context on the CPU), and reads the PFM screenshots it writes.
 
 #include <core/image.h>
+#include <tests/apps/cli_runner.h>
 
 #include <string>
 
 namespace tr::testing {
 
-struct ViewerRun {
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
+using ViewerRun = CliRun;
 
 // Whether xvfb-run is on the PATH. When it is not: false, and with CI=true also a test failure
 // (the viewer tests must run in CI); callers then GTEST_SKIP().
