@@ -145,13 +145,12 @@ std::optional<SortMethod> parse_sort_method(std::string_view name) {
     return std::nullopt;
 }
 
-bool claims_exactness(SortMethod method, bool mesh_convex_or_convexified) {
+bool claims_exactness(SortMethod method, bool sorted_mesh_convex) {
     switch (method) {
         case SortMethod::kAuto:
         case SortMethod::kExact:
-            return true;
         case SortMethod::kMpvo:
-            return mesh_convex_or_convexified;
+            return sorted_mesh_convex;
         default:
             return false;
     }

@@ -30,9 +30,10 @@ enum class SortMethod {
 std::string_view sort_method_name(SortMethod method);  // "auto", "mpvo", "mpvonc", ...
 std::optional<SortMethod> parse_sort_method(std::string_view name);
 
-// Whether a method's orders are exact for a mesh that is convex (or convexified) or not.
-// mpvo is exact on convex meshes, exact on convexified ones; mpvonc and centroid never claim it.
-bool claims_exactness(SortMethod method, bool mesh_convex_or_convexified);
+// Whether a method's orders are exact on the mesh it sorts, given whether that mesh (real and
+// virtual tets together) is convex: the MPVO family (auto, exact, mpvo) is exactly then;
+// mpvonc and centroid never. The policy that convexifies first is pipeline/sort_preparation.h.
+bool claims_exactness(SortMethod method, bool sorted_mesh_convex);
 
 // What the view needs: the eye (perspective) or the view direction (orthographic), and a
 // screen frame for the pairwise sort's overlap tests.
