@@ -1,3 +1,4 @@
+#include <core/check.h>
 #include <sort/order_verifier.h>
 
 #include <algorithm>
@@ -43,8 +44,10 @@ OrderCheck check_order(const TetMesh& mesh, std::span<const CellId> order,
     std::vector<std::vector<CellId>> bins(static_cast<std::size_t>(tiles_x) * tiles_y);
     std::vector<CellId> everywhere;  // cells reaching behind a perspective eye
     std::vector<std::int64_t> position(mesh.num_tets(), -1);
-    for (std::size_t i = 0; i < order.size(); ++i)
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        TR_CHECK(order[i] < mesh.num_tets());  // would write past the end of `position`
         position[order[i]] = static_cast<std::int64_t>(i);
+    }
 
     for (CellId t = 0; t < mesh.num_real_tets(); ++t) {
         double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;

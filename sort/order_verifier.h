@@ -22,7 +22,8 @@ struct OrderCheck {
 
 // Checks `order` (back to front, real cells only, each at most once) for the camera's view at
 // its image size. Segments shorter than `min_segment` times the bounds' diagonal are ignored
-// (rays grazing an edge or vertex). Cost: O(pixels x cells per pixel) after an O(cells) binning.
+// (rays grazing an edge or vertex). Precondition (TR_CHECK aborts): every id in `order` is
+// below mesh.num_tets(). Cost: O(pixels x cells per pixel) after an O(cells) binning.
 OrderCheck check_order(const TetMesh& mesh, std::span<const CellId> order,
                        const CameraFrame& camera, double min_segment = 1e-9);
 

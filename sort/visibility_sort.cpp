@@ -1,3 +1,4 @@
+#include <core/check.h>
 #include <sort/visibility_sort.h>
 
 #include <algorithm>
@@ -214,6 +215,8 @@ void VisibilitySorter::topological(const TetMesh& mesh, const FaceAdjacency& adj
                                    const SortView& view, bool prioritize, SortStats& stats,
                                    const SortOptions& options) {
     const std::size_t n = mesh.num_tets();
+    // An adjacency of another mesh would index past the ends of in_degree_ and the mesh.
+    TR_CHECK_EQ(adjacency.neighbors.size(), n);
     // in_degree_ holds, per cell, the count of cells behind it (low 3 bits) and which faces
     // lead to a cell in front of it (bits 3..6).
     in_degree_.assign(n, 0);
@@ -221,7 +224,9 @@ void VisibilitySorter::topological(const TetMesh& mesh, const FaceAdjacency& adj
         const Tet& tet = mesh.tet(static_cast<CellId>(t));
         for (int k = 0; k < 4; ++k) {
             const CellId nb = adjacency.neighbors[t][k];
-            if (nb == kNoCell || nb < t) continue;
+            if (nb == kNoCell) continue;
+            TR_CHECK(nb < n);  // every later pass trusts the ids checked here
+            if (nb < t) continue;
             const double side = viewer_side(mesh.point(tet[kTetFaceVertices[k][0]]),
                                             mesh.point(tet[kTetFaceVertices[k][1]]),
                                             mesh.point(tet[kTetFaceVertices[k][2]]), view);
@@ -358,6 +363,7 @@ void pairwise_exact_order(const TetMesh& mesh, const std::vector<CellId>& cells,
     const std::size_t k = cells.size();
     std::vector<ProjectedCell> proj(k);
     for (std::size_t i = 0; i < k; ++i) {
+        TR_CHECK(cells[i] < mesh.num_tets());
         ProjectedCell& p = proj[i];
         p.cell = cells[i];
         p.far = far_key(mesh, cells[i], view);

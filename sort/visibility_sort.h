@@ -20,7 +20,7 @@
 namespace tr {
 
 enum class SortMethod {
-    kAuto,           // the fastest exact method for the mesh at hand (see choose_sort_method)
+    kAuto,           // MPVO here; the caller convexifies first (pipeline/sort_preparation.h)
     kMpvo,           // MPVO on the adjacency as given; exact on convex (or convexified) meshes
     kMpvoNonConvex,  // Williams' MPVONC heuristic: approximate on non-convex meshes, no fill
     kExact,          // MPVO on the convexified mesh; what MPVO leaves goes to the pairwise sort
@@ -68,8 +68,11 @@ class VisibilitySorter {
   public:
     // `adjacency` is that of `mesh` (with its virtual tets, if any). Methods kAuto and kExact
     // behave like kMpvo here: the caller convexifies (mesh/copyleft) before sorting. Fills
-    // `order` with the real cells back to front. Cost: O(n) for MPVO, O(n log n) for MPVONC
-    // and centroid, plus O(k^2) for k cells left to the fallback.
+    // `order` with the real cells back to front. Preconditions, checked (TR_CHECK aborts: a
+    // bug, not bad input) for every method but kCentroid, which ignores `adjacency`:
+    // adjacency.neighbors.size() == mesh.num_tets() and every neighbour id is kNoCell or
+    // below num_tets(). Cost: O(n) for MPVO, O(n log n) for MPVONC and centroid, plus O(k^2)
+    // for k cells left to the fallback.
     SortStats sort(const TetMesh& mesh, const FaceAdjacency& adjacency, const SortView& view,
                    SortMethod method, std::vector<CellId>& order, const SortOptions& options = {});
 
@@ -87,7 +90,8 @@ class VisibilitySorter {
 // Exact pairwise order (Stein, Becker, Max 1994) of `cells`: for each pair whose projections
 // overlap, the one a ray through the overlap meets first is in front; the relation is sorted
 // topologically, cycles broken deterministically (the cell farthest by centroid goes first)
-// and counted. Appends back-to-front to `order`. Cost: O(k^2) for k cells.
+// and counted. Appends back-to-front to `order`. Precondition (TR_CHECK): every id in
+// `cells` is below mesh.num_tets(). Cost: O(k^2) for k cells.
 void pairwise_exact_order(const TetMesh& mesh, const std::vector<CellId>& cells,
                           const SortView& view, std::vector<CellId>& order, SortStats& stats);
 

@@ -94,8 +94,11 @@ TEST(SortConvexified, NonConvexMeshesBecomeExact) {
         bool (*skip)(int, int, int);
         int n, nz;
     };
+    // (An extruded L is not among them: its bare MPVO order measured no violation in 2.6M
+    // pairs over 168 views, outside and inside, so it cannot show a change.)
     const Case cases[] = {
-        {"L", [](int i, int j, int) { return i >= 2 && j >= 2; }, 4, 3},
+        {"Z", [](int i, int j, int) { return (i >= 2 && j < 2) || (i < 3 && j >= 3); }, 5, 2},
+        {"notch", [](int i, int j, int k) { return i >= 2 && j >= 2 && k >= 1; }, 4, 3},
         {"ring", [](int i, int j, int) { return i >= 1 && i <= 3 && j >= 1 && j <= 3; }, 5, 2},
         {"U", [](int i, int j, int) { return i >= 2 && j >= 2 && i < 5 && j < 5; }, 6, 2},
     };
@@ -114,6 +117,9 @@ TEST(SortConvexified, NonConvexMeshesBecomeExact) {
         const Tally inside = check_views(filled, SortMethod::kMpvo, 4, 12, true);
         std::printf("[ %s ] pairs %zu: mpvo %zu violations bare, %zu convexified\n", c.name,
                     with.pairs, without.violations, with.violations);
+        // Bare, MPVO is wrong along some rays (measured 434 Z, 33 notch, 1409 ring, 1559 U);
+        // convexified, along none.
+        EXPECT_GT(without.violations, 0u);
         EXPECT_GT(with.pairs, 1000u);
         EXPECT_EQ(with.violations, 0u);
         EXPECT_EQ(inside.violations, 0u);
@@ -133,6 +139,7 @@ TEST(SortConvexified, TheDemoCylinderHole) {
         "[ demo %zu tets ] pairs %zu: mpvo %zu violations bare, %zu convexified; "
         "centroid %zu\n",
         demo->num_tets(), with.pairs, without.violations, with.violations, centroid.violations);
+    EXPECT_GT(without.violations, 0u);  // measured 168
     EXPECT_GT(with.pairs, 1000u);
     EXPECT_EQ(with.violations, 0u);
 }
