@@ -1,16 +1,14 @@
 #include <apps/cli_common.h>
-#include <core/config.h>
-#include <io/read_mesh.h>
 #include <project/scene.h>
 
-#if TETRENDER_HAS_CGAL
-#include <mesh/copyleft/delaunay.h>
-#endif
+#include <nlohmann/json.hpp>
 
 #include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <unistd.h>
+#include <variant>
 
 namespace tr::apps {
 
@@ -47,67 +45,49 @@ bool parse_image_size(const std::string& text, int& width, int& height) {
     return width >= 1 && height >= 1 && width <= kMaxImageSide && height <= kMaxImageSide;
 }
 
-double ms_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
-
-Error with_where(Error error, const std::string& path) {
-    error.where = error.where.empty() ? path : path + ": " + error.where;
-    return error;
-}
-
 int report_error(const Error& error) {
     std::fprintf(stderr, "tetrender: %s\n", error.to_string().c_str());
     return kExitError;
 }
 
-Result<LoadedMesh> load_tet_mesh(const std::string& path, const LoadOptions& options) {
-    LoadedMesh loaded;
-    const ProgressFn progress = terminal_progress();
-    auto start = std::chrono::steady_clock::now();
-    ReadOptions read_options;
-    read_options.time_step = options.time_step;
-    read_options.progress = progress;
-    TR_TRY(loaded.input, read_mesh(path, read_options));
-    loaded.read_ms = ms_since(start);
-
-    start = std::chrono::steady_clock::now();
-    if (loaded.input.is_point_cloud() || options.delaunay) {
-#if TETRENDER_HAS_CGAL
-        UnstructuredMesh cloud;
-        cloud.points = loaded.input.points;
-        cloud.point_fields = loaded.input.point_fields;
-        auto tets = delaunay_tetrahedralize(cloud);
-        if (!tets.ok()) {
-            Error e = tets.error();
-            if (e.where.empty()) e.where = path;
-            return e;
-        }
-        loaded.tets = std::move(tets).value();
-        loaded.used_delaunay = true;
-        loaded.report.num_tets = loaded.tets.num_tets();
-#else
-        return make_error(ErrorCode::kUnsupported,
-                          "a point cloud needs Delaunay tetrahedralization: this build has no "
-                          "CGAL (TETRENDER_WITH_CGAL=OFF)",
-                          path);
-#endif
-    } else {
-        TetrahedralizeOptions tet_options;
-        tet_options.merge_points = !options.no_merge;
-        tet_options.merge_tolerance = options.merge_tolerance;
-        tet_options.progress = progress;
-        auto tets = tetrahedralize(loaded.input, tet_options, &loaded.report);
-        if (!tets.ok()) {
-            Error e = tets.error();
-            e.where = e.where.empty() ? path : path + ": " + e.where;
-            return e;
-        }
-        loaded.tets = std::move(tets).value();
+Status check_output_path(const std::string& path, const std::vector<std::string>& extensions) {
+    const std::filesystem::path p(path);
+    bool known = false;
+    std::string list;
+    for (const std::string& e : extensions) {
+        known = known || p.extension() == e;
+        list += (list.empty() ? "" : ", ") + e;
     }
-    loaded.tetrahedralize_ms = ms_since(start);
-    return loaded;
+    if (!known) {
+        return make_error(
+            ErrorCode::kInvalidArgument,
+            "the output must end in " + list + ", not '" + p.extension().string() + "'", path);
+    }
+    std::error_code ec;
+    const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : ".";
+    if (!std::filesystem::is_directory(folder, ec)) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "the output's folder '" + folder.string() + "' does not exist", path);
+    }
+    return {};
+}
+
+int report_usage(const Error& error) {
+    std::fprintf(stderr, "tetrender: %s\n", error.to_string().c_str());
+    return kExitUsage;
+}
+
+void print_notes(const std::vector<std::string>& notes) {
+    for (const std::string& note : notes)
+        std::fprintf(stderr, "tetrender: note: %s\n", note.c_str());
+}
+
+void print_stats(const NamedStats& stats) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& [key, value] : stats.entries()) {
+        std::visit([&j, k = key](const auto& v) { j[k] = v; }, value);
+    }
+    std::printf("%s\n", j.dump().c_str());
 }
 
 }  // namespace tr::apps

@@ -1,15 +1,15 @@
 #pragma once
-// What the tetrender subcommands share: progress on a terminal, loading a file into a TetMesh,
-// and the exit codes.
+// What the tetrender subcommands share: progress on a terminal, the exit codes, and printing
+// what the library returns (errors, notes, stats). Loading and rendering are the library's
+// (pipeline/).
 
 #include <core/progress.h>
 #include <core/result.h>
-#include <mesh/tet_mesh.h>
-#include <mesh/tetrahedralize.h>
-#include <mesh/unstructured_mesh.h>
 
-#include <chrono>
+#include <pipeline/loaded_mesh.h>
+#include <pipeline/render_stats.h>
 #include <string>
+#include <vector>
 
 namespace tr::apps {
 
@@ -22,36 +22,23 @@ inline constexpr int kExitUsage = 2;  // bad command line
 // otherwise, so logs and pipes stay clean).
 ProgressFn terminal_progress();
 
-// How a file becomes tets.
-struct LoadOptions {
-    int time_step = 0;
-    double merge_tolerance = 0.0;  // 0: exact merging
-    bool no_merge = false;
-    bool delaunay = false;  // force Delaunay (point clouds always use it)
-};
-
-struct LoadedMesh {
-    UnstructuredMesh input;  // as read (its fields are also on `tets`)
-    TetMesh tets;
-    TetrahedralizeReport report;
-    bool used_delaunay = false;
-    double read_ms = 0;
-    double tetrahedralize_ms = 0;
-};
-
-// Reads `path` and tetrahedralizes it (Delaunay for point clouds, when built with CGAL).
-Result<LoadedMesh> load_tet_mesh(const std::string& path, const LoadOptions& options);
-
 // Parses "WxH" with both sides in [1, kMaxImageSide] (project/scene.h).
 bool parse_image_size(const std::string& text, int& width, int& height);
 
-// Milliseconds since `start`.
-double ms_since(std::chrono::steady_clock::time_point start);
-
-// `error` with `path` in front of its where ("path: where" or "path").
-Error with_where(Error error, const std::string& path);
+// Checks, before any work, that `path` can be written: its extension is one of `extensions`
+// (".png", ...; case-sensitive) and its folder exists. Error kInvalidArgument saying which.
+Status check_output_path(const std::string& path, const std::vector<std::string>& extensions);
 
 // Prints "tetrender: <error>" on stderr, returns kExitError.
 int report_error(const Error& error);
+
+// Prints "tetrender: <error>" on stderr, returns kExitUsage: a bad command-line value.
+int report_usage(const Error& error);
+
+// Prints each note as "tetrender: note: ..." on stderr.
+void print_notes(const std::vector<std::string>& notes);
+
+// Prints the stats as one JSON object on stdout.
+void print_stats(const NamedStats& stats);
 
 }  // namespace tr::apps

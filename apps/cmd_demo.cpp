@@ -2,15 +2,13 @@
 // cylinder opaque.
 #include <apps/cli_common.h>
 #include <apps/commands.h>
-#include <apps/flowvol_render.h>
-#include <apps/sort_setup.h>
 #include <core/config.h>
 #include <io/write_image.h>
 #include <io/write_vtu.h>
-#include <mesh/point_data.h>
-#include <project/colormap.h>
-#include <project/cpu_renderer.h>
 #include <project/opaque_geometry.h>
+
+#include <pipeline/pipeline.h>
+#include <pipeline/quick_scene.h>
 
 #if TETRENDER_HAS_TETGEN
 #include <mesh/copyleft/cylinder_demo.h>
@@ -39,12 +37,12 @@ struct DemoArgs {
 
 int run_demo(const DemoArgs& args) {
 #if TETRENDER_HAS_TETGEN
-    const auto integrator = parse_integrator(args.integrator);
-    if (!integrator) {
-        std::fprintf(stderr, "tetrender: unknown --integrator '%s'\n", args.integrator.c_str());
-        return kExitUsage;
+    const auto integrator = integrator_named(args.integrator);
+    if (!integrator.ok()) return report_usage(integrator.error());
+    if (const Status ok = check_output_path(args.output, {".png", ".pfm"}); !ok.ok()) {
+        return report_usage(ok.error());
     }
-    auto start = std::chrono::steady_clock::now();
+    const auto start = std::chrono::steady_clock::now();
     CylinderDemoOptions options;
     options.target_tets = args.tets;
     auto mesh = make_cylinder_demo(options);
@@ -61,96 +59,78 @@ int run_demo(const DemoArgs& args) {
         if (!written.ok()) return report_error(written.error());
         std::printf("  wrote %s\n", args.mesh_out.c_str());
     }
-    Camera camera;
-    camera.position = Vec3(-4.2, -6.5, 4.4);
-    camera.focal_point = Vec3(1.0, 0.0, -0.1);
-    camera.view_up = Vec3(0, 0, 1);
-    camera.view_angle = 38;
-    const Vec3 background(0.02, 0.02, 0.05);
-    const SurfaceMesh cylinder =
-        make_cylinder_surface(0.999 * options.cylinder_radius, -1, 1, cylinder_demo_sides(options));
+    // The scene: the demo mesh handed over in memory, the cylinder opaque.
+    Scene scene;
+    SceneVolume volume;
+    volume.mesh = "demo";
+    volume.tets = std::make_shared<const TetMesh>(std::move(mesh).value());
+    volume.scalar = args.scalar;
+    scene.camera.position = Vec3(-4.2, -6.5, 4.4);
+    scene.camera.focal_point = Vec3(1.0, 0.0, -0.1);
+    scene.camera.view_up = Vec3(0, 0, 1);
+    scene.camera.view_angle = 38;
+    scene.width = args.width;
+    scene.height = args.height;
+    scene.background = Vec3(0.02, 0.02, 0.05);
+    OpaqueSpec cylinder;
+    cylinder.surface = std::make_shared<const SurfaceMesh>(make_cylinder_surface(
+        0.999 * options.cylinder_radius, -1, 1, cylinder_demo_sides(options)));
+    cylinder.color = Vec3(0.75, 0.75, 0.8);
+    scene.opaque.push_back(cylinder);
     if (args.flowvol) {
         // Dye released upstream of the cylinder, grown through the velocity field.
-        const Field* velocity = find_field(mesh->point_fields(), "velocity");
-        auto adjacency = build_face_adjacency(*mesh);
-        if (!velocity || !adjacency.ok()) {
-            return report_error(make_error(ErrorCode::kInternal, "demo mesh without velocity"));
-        }
-        DyeSeed seed;
-        seed.center = Vec3(-2.0, 0.0, 0.0);
-        seed.width = 1.6;
-        seed.height = 1.2;
-        seed.resolution = 32;
-        FlowVolumeOptions fv_options;
-        fv_options.steps = 60;
-        fv_options.dt = 0.08;
-        start = std::chrono::steady_clock::now();
-        auto fv = grow_flow_volume(*mesh, *adjacency, *velocity, seed, fv_options);
-        if (!fv.ok()) return report_error(fv.error());
-        const double grow_ms = ms_since(start);
-        start = std::chrono::steady_clock::now();
-        const FlowVolumeView view{
-            camera, args.width, args.height, background, {{&cylinder, Vec3(0.75, 0.75, 0.8)}}};
-        FlowVolumeRenderer renderer(*fv, *mesh, view);
-        const Image& image = renderer.render_up_to(fv->mesh.num_tets());
-        const double render_ms = ms_since(start);
-        const Status written = write_image(image, args.output);
-        if (!written.ok()) return report_error(written.error());
+        FlowVolumeSpec dye;
+        dye.vectors = "velocity";
+        dye.seed_center = Vec3(-2.0, 0.0, 0.0);
+        dye.seed_width = 1.6;
+        dye.seed_height = 1.2;
+        dye.seed_resolution = 32;
+        dye.steps = 60;
+        dye.dt = 0.08;
+        scene.flow_volume = dye;
+        volume.scalar = "vorticity";  // checked, not drawn
+    }
+    // The scalar's range under the inferno map, opacity up to 0.5 per twelfth of the diagonal.
+    QuickSceneOptions quick;
+    quick.scalar = volume.scalar;
+    quick.colormap = "inferno";
+    quick.max_opacity = 0.5;
+    quick.unit_distance = volume.tets->bounds().diagonal() / 12.0;
+    auto tf = make_quick_scene(volume.mesh, *volume.tets, quick);
+    if (!tf.ok()) return report_error(tf.error());
+    volume.transfer_function = tf->volumes[0].transfer_function;
+    scene.volumes.push_back(std::move(volume));
+
+    PipelineOptions pipeline_options;
+    pipeline_options.progress = terminal_progress();
+    Pipeline pipeline(pipeline_options);
+    RenderOptions render;
+    render.integrator = *integrator;
+    auto result = pipeline.render(scene, render);
+    if (!result.ok()) return report_error(result.error());
+    print_notes(result->notes);
+    const Status written = write_image(result->image, args.output);
+    if (!written.ok()) return report_error(written.error());
+    const NamedStats& stats = result->stats;
+    if (args.flowvol) {
         std::printf(
             "  flow volume: dye through a 1.6 x 1.2 polygon upstream, %d layers, %zu tets "
-            "grown in %.0f ms, rendered without sorting in %.0f ms\n  wrote %s\n",
-            fv_options.steps, fv->mesh.num_tets(), grow_ms, render_ms, args.output.c_str());
-        return kExitOk;
+            "grown in %.0f ms, rendered without sorting in %.0f ms\n",
+            scene.flow_volume->steps, result->flow_volume->mesh.num_tets(), stats.number("grow_ms"),
+            stats.number("render_ms"));
+    } else {
+        std::printf("  rendered '%s' (%s, sort %s%s) at %dx%d: sort %.0f ms, raster %.0f ms\n",
+                    args.scalar.c_str(), std::string(integrator_name(*integrator)).c_str(),
+                    stats.number("convexified") ? "MPVO on the convexified mesh" : "MPVO",
+                    std::get<bool>(*stats.find("sort_exact")) ? ", exact" : "", args.width,
+                    args.height, stats.number("sort_ms"), stats.number("raster_ms"));
     }
-    auto scalar = point_scalar(*mesh, args.scalar, -1);
-    if (!scalar.ok()) return report_error(scalar.error());
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (float v : *scalar) lo = std::min(lo, v), hi = std::max(hi, v);
-    const Bounds3 bounds = mesh->bounds();
-    auto tf = make_quick_transfer_function("inferno", lo, hi, 0.5, bounds.diagonal() / 12.0);
-    if (!tf.ok()) return report_error(tf.error());
-
-    start = std::chrono::steady_clock::now();
-    auto setup = prepare_sort(std::move(mesh).value(), SortMethod::kAuto);
-    if (!setup.ok()) return report_error(setup.error());
-    scalar->resize(setup->mesh.num_points(), 0.0f);
-    const double prepare_ms = ms_since(start);
-
-    const CameraFrame frame(camera, args.width, args.height);
-    const OpaqueLayer layer =
-        render_opaque({{&cylinder, Vec3(0.75, 0.75, 0.8)}}, frame, background);
-
-    VisibilitySorter sorter;
-    std::vector<CellId> order;
-    const SortStats sort_stats = sorter.sort(setup->mesh, setup->adjacency,
-                                             SortView::from_camera(frame), setup->method, order);
-    const SegmentShader shader(*tf, *integrator, longest_edge(setup->mesh));
-    RenderInputs in;
-    in.mesh = &setup->mesh;
-    in.scalar = *scalar;
-    in.order = order;
-    in.shader = &shader;
-    in.camera = &frame;
-    in.opaque_color = &layer.color;
-    in.opaque_depth = &layer.depth;
-    RenderStats render_stats;
-    const Image image = render_projected_tetrahedra(in, &render_stats);
-    const Status written = write_image(image, args.output);
-    if (!written.ok()) return report_error(written.error());
-    std::printf("  rendered '%s' (%s, sort %s%s) at %dx%d: sort %.0f ms, raster %.0f ms\n",
-                args.scalar.c_str(), std::string(integrator_name(*integrator)).c_str(),
-                setup->convexified ? "MPVO on the convexified mesh" : "MPVO",
-                setup->exact ? ", exact" : "", args.width, args.height, sort_stats.milliseconds,
-                render_stats.raster_ms);
     std::printf("  wrote %s\n", args.output.c_str());
     if (args.stats) {
-        nlohmann::json j = {{"generate_ms", generate_ms},
-                            {"prepare_ms", prepare_ms},
-                            {"sort_ms", sort_stats.milliseconds},
-                            {"raster_ms", render_stats.raster_ms},
-                            {"cells_drawn", render_stats.cells_drawn},
-                            {"fragments", render_stats.fragments}};
-        std::printf("%s\n", j.dump().c_str());
+        NamedStats all;
+        all.set("generate_ms", generate_ms);
+        for (const auto& [key, value] : stats.entries()) all.set_value(key, value);
+        print_stats(all);
     }
     return kExitOk;
 #else

@@ -2,17 +2,16 @@
 // through a polygon, grown layer by layer through the flow, rendered without sorting.
 #include <apps/cli_common.h>
 #include <apps/commands.h>
-#include <apps/flowvol_render.h>
-#include <apps/flowvol_setup.h>
 #include <io/write_image.h>
 #include <io/write_vtu.h>
-#include <mesh/face_adjacency.h>
 #include <project/scene.h>
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <pipeline/pipeline.h>
+#include <pipeline/quick_scene.h>
 #include <sstream>
 
 namespace tr::apps {
@@ -45,63 +44,55 @@ int run_flowvol(FlowvolArgs args) {
     if (!args.seed_normal.empty()) {
         spec.seed_normal = Vec3(args.seed_normal[0], args.seed_normal[1], args.seed_normal[2]);
     }
-    LoadOptions load;
-    load.time_step = args.time_step;
-    auto loaded = load_tet_mesh(args.mesh, load);
+    if (const Status ok = check_output_path(args.output, {".png", ".pfm"}); !ok.ok()) {
+        return report_usage(ok.error());
+    }
+    PipelineOptions pipeline_options;
+    pipeline_options.progress = terminal_progress();
+    Pipeline pipeline(pipeline_options);
+    Scene scene;
+    SceneVolume volume;
+    volume.mesh = args.mesh;
+    volume.time_step = args.time_step;
+    auto loaded = pipeline.mesh(volume);
     if (!loaded.ok()) return report_error(loaded.error());
-    const TetMesh& domain = loaded->tets;
-    if (spec.unsteady && loaded->input.time_values.size() > 1 && !spec.start_time) {
-        spec.start_time = loaded->input.time_values[static_cast<std::size_t>(args.time_step)];
-    }
-    auto velocity = load_velocity(args.mesh, *loaded, spec.vectors, spec.unsteady);
-    if (!velocity.ok()) return report_error(velocity.error());
-    auto adjacency = build_face_adjacency(domain);
-    if (!adjacency.ok()) return report_error(with_where(adjacency.error(), args.mesh));
-    const auto start = std::chrono::steady_clock::now();
-    auto fv = grow_flow_volume(domain, *adjacency, *velocity, dye_seed(spec),
-                               flow_volume_options(spec), terminal_progress());
-    if (!fv.ok()) return report_error(with_where(fv.error(), args.mesh));
-    const double grow_ms = ms_since(start);
-    std::printf(
-        "flow volume: %d layers, %zu tets in %.0f ms; %zu particles inserted where the front "
-        "stretched, %zu stopped\n",
-        spec.steps, fv->mesh.num_tets(), grow_ms, fv->particles_inserted, fv->particles_stopped);
-    if (fv->unresolved_edges > 0) {
-        std::fprintf(stderr,
-                     "tetrender: note: %zu stretched front edges were left unsplit (at the "
-                     "refinement limit, e.g. at a stagnation point, or their new particle left "
-                     "the domain)\n",
-                     fv->unresolved_edges);
-    }
-    if (!args.mesh_out.empty()) {
-        const Status written = write_vtu(fv->mesh, args.mesh_out);
-        if (!written.ok()) return report_error(written.error());
-        std::printf("wrote %s\n", args.mesh_out.c_str());
-    }
-    const Camera camera = framing_camera(domain.bounds(), Vec3(1.0, -1.2, 0.8));
-    FlowVolumeView view{camera, width, height, Vec3(0.02, 0.02, 0.05), {}};
-    SurfaceMesh boundary;
-    if (spec.context) {
-        boundary = boundary_surface(domain, *adjacency);
-        view.context = &boundary;
-    }
-    FlowVolumeRenderer renderer(*fv, domain, view);
-    const auto render_start = std::chrono::steady_clock::now();
+    scene.volumes.push_back(volume);
+    scene.camera = framing_camera((*loaded)->tets.bounds(), kDefaultViewDirection);
+    scene.width = width;
+    scene.height = height;
+    scene.background = Vec3(0.02, 0.02, 0.05);
+    scene.flow_volume = spec;
+
+    RenderOptions options;
+    std::size_t frames = 0;
     if (!args.frames.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(args.frames, ec);
-        for (std::size_t k = 0; k < fv->layer_tets.size(); ++k) {
+        options.on_flow_volume_layer = [&](std::size_t layer, const Image& picture) {
             char name[64];
-            std::snprintf(name, sizeof(name), "/frame_%04zu.png", k + 1);
-            const Status written =
-                write_image(renderer.render_up_to(fv->layer_tets[k]), args.frames + name);
-            if (!written.ok()) return report_error(written.error());
-        }
-        std::printf("wrote %zu frames to %s\n", fv->layer_tets.size(), args.frames.c_str());
+            std::snprintf(name, sizeof(name), "/frame_%04zu.png", layer + 1);
+            ++frames;
+            return write_image(picture, args.frames + name);
+        };
     }
-    const Image image = renderer.render_up_to(fv->mesh.num_tets());
-    std::printf("rendered in %.0f ms (no sort: one dye colour)\n", ms_since(render_start));
-    const Status written = write_image(image, args.output);
+    auto result = pipeline.render(scene, options);
+    if (!result.ok()) return report_error(result.error());
+    const FlowVolume& fv = *result->flow_volume;
+    const NamedStats& stats = result->stats;
+    std::printf(
+        "flow volume: %d layers, %zu tets in %.0f ms; %zu particles inserted where the front "
+        "stretched, %zu stopped\n",
+        spec.steps, fv.mesh.num_tets(), stats.number("grow_ms"), fv.particles_inserted,
+        fv.particles_stopped);
+    print_notes(result->notes);
+    if (!args.mesh_out.empty()) {
+        const Status written = write_vtu(fv.mesh, args.mesh_out);
+        if (!written.ok()) return report_error(written.error());
+        std::printf("wrote %s\n", args.mesh_out.c_str());
+    }
+    if (frames > 0) std::printf("wrote %zu frames to %s\n", frames, args.frames.c_str());
+    std::printf("rendered in %.0f ms (no sort: one dye colour)\n", stats.number("render_ms"));
+    const Status written = write_image(result->image, args.output);
     if (!written.ok()) return report_error(written.error());
     std::printf("wrote %s\n", args.output.c_str());
     return kExitOk;

@@ -67,7 +67,9 @@ void print_arrays(const char* title, const nlohmann::json& arrays) {
 }
 
 int run_info(const InfoArgs& args) {
-    auto loaded_or = load_tet_mesh(args.path, args.load);
+    LoadOptions load = args.load;
+    load.progress = terminal_progress();
+    auto loaded_or = load_tet_mesh(args.path, load);
     if (!loaded_or.ok()) return report_error(loaded_or.error());
     const LoadedMesh& loaded = *loaded_or;
     const UnstructuredMesh& in = loaded.input;

@@ -2,9 +2,7 @@
 // views. tetrender sort SCENE.json --order-out FILE: the back-to-front order for a scene.
 #include <apps/cli_common.h>
 #include <apps/commands.h>
-#include <apps/sort_setup.h>
 #include <project/scene.h>
-#include <sort/order_verifier.h>
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <pipeline/pipeline.h>
+#include <pipeline/sort_check.h>
 
 namespace tr::apps {
 namespace {
@@ -32,86 +32,74 @@ struct SortCheckArgs {
 };
 
 int run_sort_check(const SortCheckArgs& args) {
-    int width = 0, height = 0;
-    if (!parse_image_size(args.size, width, height)) {
+    SortCheckOptions options;
+    if (!parse_image_size(args.size, options.width, options.height)) {
         std::fprintf(stderr, "tetrender: --size must be WxH with sides in [1, %d], not '%s'\n",
                      kMaxImageSide, args.size.c_str());
         return kExitUsage;
     }
-    std::vector<SortMethod> methods;
-    if (args.sort == "all") {
-        methods = {SortMethod::kMpvo, SortMethod::kMpvoNonConvex, SortMethod::kExact,
-                   SortMethod::kCentroid};
-    } else if (auto m = parse_sort_method(args.sort)) {
-        methods = {*m};
-    } else {
-        std::fprintf(stderr,
-                     "tetrender: unknown --sort '%s' (auto, mpvo, mpvonc, exact, "
-                     "centroid, all)\n",
-                     args.sort.c_str());
-        return kExitUsage;
+    if (args.sort != "all") {
+        auto method = sort_method_named(args.sort);
+        if (!method.ok()) return report_usage(method.error());
+        options.methods = {*method};
     }
-    auto loaded = load_tet_mesh(args.path, args.load);
+    options.views = args.views;
+    options.orthographic = args.orthographic;
+    options.inside = args.inside;
+    options.seed = args.seed;
+    PipelineOptions pipeline_options;
+    pipeline_options.load = args.load;
+    pipeline_options.progress = terminal_progress();
+    Pipeline pipeline(pipeline_options);
+    SceneVolume volume;
+    volume.mesh = args.path;
+    volume.time_step = args.load.time_step;
+    auto loaded = pipeline.mesh(volume);
     if (!loaded.ok()) return report_error(loaded.error());
-    const Bounds3 bounds = loaded->tets.bounds();
-    bool exact_violated = false;
     if (!args.json) {
         std::printf("%s: %zu tets; %d %s views at %dx%d%s\n", args.path.c_str(),
-                    loaded->tets.num_real_tets(), args.views,
-                    args.orthographic ? "orthographic" : "perspective", width, height,
-                    args.inside ? ", eye inside" : "");
+                    (*loaded)->tets.num_real_tets(), args.views,
+                    args.orthographic ? "orthographic" : "perspective", options.width,
+                    options.height, args.inside ? ", eye inside" : "");
         std::printf("%-9s %5s %10s %10s %9s %9s %9s %9s %s\n", "sort", "view", "pairs",
                     "violations", "fallback", "cycles", "sort ms", "check ms", "");
     }
-    for (SortMethod method : methods) {
-        auto setup_or = prepare_sort(loaded->tets, method);
-        if (!setup_or.ok()) return report_error(setup_or.error());
-        SortSetup& setup = *setup_or;
-        if (!setup.note.empty() && !args.json) {
-            std::printf("%-9s note: %s\n", std::string(sort_method_name(method)).c_str(),
-                        setup.note.c_str());
+    auto name = [](SortMethod m) { return std::string(sort_method_name(m)); };
+    const auto on_method = [&](const SortCheckMethod& m) {
+        if (!m.prepared.note.empty() && !args.json) {
+            std::printf("%-9s note: %s\n", name(m.method).c_str(), m.prepared.note.c_str());
         }
-        VisibilitySorter sorter;
-        std::vector<CellId> order;
-        std::size_t total_violations = 0;
-        for (int v = 0; v < args.views; ++v) {
-            const Camera camera =
-                random_view(bounds, args.seed * 7919 + static_cast<std::uint64_t>(v),
-                            args.orthographic, args.inside);
-            const CameraFrame frame(camera, width, height);
-            const SortStats stats = sorter.sort(setup.mesh, setup.adjacency,
-                                                SortView::from_camera(frame), setup.method, order);
-            const OrderCheck check = check_order(setup.mesh, order, frame);
-            total_violations += check.violations;
-            if (args.json) {
-                nlohmann::json j = {{"sort", sort_method_name(method)},
-                                    {"view", v},
-                                    {"exact", setup.exact},
-                                    {"convexified", setup.convexified},
-                                    {"pairs", check.pairs},
-                                    {"violations", check.violations},
-                                    {"by_mpvo", stats.by_mpvo},
-                                    {"by_fallback", stats.by_fallback},
-                                    {"cells_in_cycles", stats.cells_in_cycles},
-                                    {"sort_ms", stats.milliseconds},
-                                    {"check_ms", check.milliseconds}};
-                std::printf("%s\n", j.dump().c_str());
-            } else {
-                std::printf("%-9s %5d %10zu %10zu %9zu %9zu %9.2f %9.1f\n",
-                            std::string(sort_method_name(method)).c_str(), v, check.pairs,
-                            check.violations, stats.by_fallback, stats.cells_in_cycles,
-                            stats.milliseconds, check.milliseconds);
-            }
+    };
+    const auto on_row = [&](const SortCheckRow& row) {
+        if (args.json) {
+            nlohmann::json j = {{"sort", name(row.method)},
+                                {"view", row.view},
+                                {"exact", row.claims_exact},
+                                {"convexified", row.convexified},
+                                {"pairs", row.check.pairs},
+                                {"violations", row.check.violations},
+                                {"by_mpvo", row.stats.by_mpvo},
+                                {"by_fallback", row.stats.by_fallback},
+                                {"cells_in_cycles", row.stats.cells_in_cycles},
+                                {"sort_ms", row.stats.milliseconds},
+                                {"check_ms", row.check.milliseconds}};
+            std::printf("%s\n", j.dump().c_str());
+        } else {
+            std::printf("%-9s %5d %10zu %10zu %9zu %9zu %9.2f %9.1f\n", name(row.method).c_str(),
+                        row.view, row.check.pairs, row.check.violations, row.stats.by_fallback,
+                        row.stats.cells_in_cycles, row.stats.milliseconds, row.check.milliseconds);
         }
-        if (setup.exact && total_violations > 0) exact_violated = true;
-        if (!args.json) {
-            std::printf("%-9s total %zu violations%s%s\n",
-                        std::string(sort_method_name(method)).c_str(), total_violations,
-                        setup.exact ? " (claims exact)" : " (approximate)",
-                        setup.convexified ? ", convexified" : "");
+    };
+    auto report = check_sorts(pipeline, volume, options, on_method, on_row);
+    if (!report.ok()) return report_error(report.error());
+    if (!args.json) {
+        for (const SortCheckMethod& m : report->methods) {
+            std::printf("%-9s total %zu violations%s%s\n", name(m.method).c_str(), m.violations,
+                        m.prepared.exact ? " (claims exact)" : " (approximate)",
+                        m.prepared.sorted->convexified ? ", convexified" : "");
         }
     }
-    if (exact_violated) {
+    if (report->exact_violated) {
         std::fprintf(stderr, "tetrender: an exact sorter put cells in the wrong order\n");
         return kExitViolations;
     }
@@ -126,36 +114,38 @@ struct SortArgs {
 };
 
 int run_sort(const SortArgs& args) {
-    const auto method = parse_sort_method(args.sort);
-    if (!method) {
-        std::fprintf(stderr,
-                     "tetrender: unknown --sort '%s' (auto, mpvo, mpvonc, exact, "
-                     "centroid)\n",
-                     args.sort.c_str());
-        return kExitUsage;
-    }
+    const auto method = sort_method_named(args.sort);
+    if (!method.ok()) return report_usage(method.error());
     auto scene = read_scene(args.scene);
     if (!scene.ok()) return report_error(scene.error());
-    LoadOptions load;
-    load.time_step = scene->time_step;
-    auto loaded = load_tet_mesh(scene->mesh.string(), load);
-    if (!loaded.ok()) return report_error(loaded.error());
-    const bool all_tets = !loaded->used_delaunay && loaded->report.input_cells.size() == 1 &&
-                          loaded->report.input_cells.count(CellType::kTetra) == 1;
-    const std::size_t num_tets = loaded->tets.num_real_tets();
-    auto setup = prepare_sort(std::move(loaded->tets), *method);
-    if (!setup.ok()) return report_error(setup.error());
-    if (!setup->note.empty()) std::fprintf(stderr, "tetrender: note: %s\n", setup->note.c_str());
+    if (scene->volumes.size() != 1) {
+        return report_error(make_error(ErrorCode::kUnsupported,
+                                       "a visibility order is of one volume; this scene has " +
+                                           std::to_string(scene->volumes.size()),
+                                       args.scene));
+    }
+    PipelineOptions pipeline_options;
+    pipeline_options.progress = terminal_progress();
+    Pipeline pipeline(pipeline_options);
+    const SceneVolume& volume = scene->volumes[0];
+    auto loaded_or = pipeline.mesh(volume);
+    if (!loaded_or.ok()) return report_error(loaded_or.error());
+    const LoadedMesh& loaded = **loaded_or;
+    const bool all_tets = !loaded.used_delaunay && loaded.report.input_cells.size() == 1 &&
+                          loaded.report.input_cells.count(CellType::kTetra) == 1;
+    const std::size_t num_tets = loaded.tets.num_real_tets();
     const CameraFrame frame(scene->camera, scene->width, scene->height);
-    VisibilitySorter sorter;
-    std::vector<CellId> order;
-    const SortStats stats = sorter.sort(setup->mesh, setup->adjacency, SortView::from_camera(frame),
-                                        setup->method, order);
+    auto view = pipeline.visibility_order(volume, frame, *method);
+    if (!view.ok()) return report_error(view.error());
+    if (!view->prepared.note.empty()) print_notes({view->prepared.note});
+    const std::vector<CellId>& order = view->order;
+    const SortStats& stats = view->stats;
+    const TetMesh& sorted_mesh = view->prepared.mesh();
 
     const std::string tmp = args.order_out + ".tmp";
     {
         std::ofstream out(tmp, std::ios::trunc);
-        for (CellId t : order) out << (all_tets ? setup->mesh.source_cell(t) : t) << '\n';
+        for (CellId t : order) out << (all_tets ? sorted_mesh.source_cell(t) : t) << '\n';
         if (!out) {
             std::error_code ec;
             std::filesystem::remove(tmp, ec);
@@ -169,14 +159,14 @@ int run_sort(const SortArgs& args) {
         return report_error(make_error(ErrorCode::kIo, "cannot write", args.order_out));
     }
     if (args.stats) {
-        nlohmann::json j = {{"load_ms", loaded->read_ms},
-                            {"tetrahedralize_ms", loaded->tetrahedralize_ms},
-                            {"adjacency_ms", setup->adjacency_ms},
-                            {"convexify_ms", setup->convexify_ms},
+        nlohmann::json j = {{"load_ms", loaded.read_ms},
+                            {"tetrahedralize_ms", loaded.tetrahedralize_ms},
+                            {"adjacency_ms", view->prepared.sorted->adjacency_ms},
+                            {"convexify_ms", view->prepared.sorted->convexify_ms},
                             {"sort_ms", stats.milliseconds},
                             {"sort", sort_method_name(*method)},
-                            {"exact", setup->exact},
-                            {"convexified", setup->convexified},
+                            {"exact", view->exact},
+                            {"convexified", view->prepared.sorted->convexified},
                             {"cells", stats.cells},
                             {"tets", num_tets},
                             {"by_mpvo", stats.by_mpvo},

@@ -58,6 +58,7 @@ int run_tetrahedralize(const TetrahedralizeArgs& args) {
     } else {
         LoadOptions load = args.load;
         load.delaunay = args.delaunay;
+        load.progress = terminal_progress();
         auto loaded = load_tet_mesh(args.input, load);
         if (!loaded.ok()) return report_error(loaded.error());
         mesh = std::move(loaded->tets);

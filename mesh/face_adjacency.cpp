@@ -133,15 +133,20 @@ SurfaceMesh boundary_surface(const TetMesh& mesh, const FaceAdjacency& adjacency
     return surface;
 }
 
-ConvexityReport check_convexity(const TetMesh& mesh, const FaceAdjacency& adjacency,
+ConvexityReport check_convexity(const TetMesh& mesh, const FaceAdjacency& adjacency, ConvexityOf of,
                                 double rel_tolerance) {
     ConvexityReport report;
-    // Boundary of the real tets: faces whose other side is nothing or a virtual tet.
+    // Boundary of the solid: faces whose other side is nothing (or, for the real tets alone,
+    // a virtual tet).
+    const bool all = of == ConvexityOf::kAllTets;
+    const std::size_t num_cells = all ? mesh.num_tets() : mesh.num_real_tets();
     std::vector<BoundaryFace> faces;
-    for (std::size_t t = 0; t < mesh.num_real_tets(); ++t) {
+    for (std::size_t t = 0; t < num_cells; ++t) {
         for (int k = 0; k < 4; ++k) {
             const CellId n = adjacency.neighbors[t][k];
-            if (n == kNoCell || mesh.is_virtual(n)) faces.push_back({static_cast<CellId>(t), k});
+            if (n == kNoCell || (!all && mesh.is_virtual(n))) {
+                faces.push_back({static_cast<CellId>(t), k});
+            }
         }
     }
     if (faces.empty()) return report;

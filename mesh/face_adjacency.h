@@ -46,12 +46,19 @@ struct ConvexityReport {
     std::size_t num_nonmanifold_edges = 0;    // boundary edges with other than two faces
 };
 
-// Is the boundary of the real tets the boundary of their convex hull? True when the boundary
+// Which cells make the solid whose convexity is checked.
+enum class ConvexityOf {
+    kRealTets,  // the mesh's own cells: virtual tets count as outside
+    kAllTets,   // real and virtual together (a convexified mesh: what MPVO sorts)
+};
+
+// Is the boundary of the chosen tets the boundary of their convex hull? True when the boundary
 // is one closed surface with no reflex edge (an edge is reflex when a neighbouring face's far
 // vertex lies outside the plane of the other by more than rel_tolerance times the bounds'
-// diagonal). `adjacency` must be of `mesh` without virtual tets or with them: virtual tets
-// count as outside. Cost: O(boundary faces).
+// diagonal). `adjacency` must be of `mesh` without virtual tets or with them. Cost:
+// O(boundary faces).
 ConvexityReport check_convexity(const TetMesh& mesh, const FaceAdjacency& adjacency,
+                                ConvexityOf of = ConvexityOf::kRealTets,
                                 double rel_tolerance = 1e-9);
 
 }  // namespace tr

@@ -207,7 +207,110 @@ json flow_volume_json(const FlowVolumeSpec& f) {
     return j;
 }
 
+// The keys of one volume, at `path` ("$" for the top-level keys, "$.volumes[i]" otherwise).
+SceneVolume volume(const json& j, const std::string& path, const std::filesystem::path& base_dir) {
+    SceneVolume v;
+    const json& mesh = require(j, path, "mesh");
+    if (!mesh.is_string() || mesh.get<std::string>().empty())
+        fail(path + ".mesh", "expected a file path");
+    v.mesh = base_dir / mesh.get<std::string>();
+    const json& scalar = require(j, path, "scalar");
+    if (!scalar.is_string() || scalar.get<std::string>().empty())
+        fail(path + ".scalar", "expected an array name");
+    v.scalar = scalar.get<std::string>();
+    if (j.contains("component")) {
+        const json& c = j["component"];
+        if (c.is_string()) {
+            if (c.get<std::string>() != "magnitude") {
+                fail(path + ".component", "expected \"magnitude\" or a component index");
+            }
+        } else {
+            v.component = integer(c, path + ".component");
+            if (v.component < 0) fail(path + ".component", "must be >= 0");
+        }
+    }
+    v.transfer_function =
+        transfer_function(require(j, path, "transfer_function"), path + ".transfer_function");
+    if (j.contains("time_step")) {
+        v.time_step = integer(j["time_step"], path + ".time_step");
+        if (v.time_step < 0) fail(path + ".time_step", "must be >= 0");
+    }
+    return v;
+}
+
+const std::set<std::string> kVolumeKeys = {"mesh", "scalar", "component", "transfer_function",
+                                           "time_step"};
+
+MethodSpec method(const json& j, const std::string& path) {
+    if (!j.is_object()) fail(path, "expected an object");
+    MethodSpec m;
+    const json& name = require(j, path, "name");
+    if (!name.is_string() || name.get<std::string>().empty())
+        fail(path + ".name", "expected a method name");
+    m.name = name.get<std::string>();
+    for (const auto& [key, value] : j.items()) {
+        const std::string at = path + "." + key;
+        if (key == "name") continue;
+        if (key == "repetitions") {
+            m.repetitions = integer(value, at);
+            if (*m.repetitions < 1) fail(at, "must be >= 1");
+        } else if (key == "seed") {
+            if (!value.is_number_integer()) fail(at, "expected an integer");
+            m.seed = value.get<std::int64_t>();
+        } else if (value.is_boolean()) {
+            m.options[key] = value.get<bool>();
+        } else if (value.is_number_integer()) {
+            m.options[key] = value.get<std::int64_t>();
+        } else if (value.is_number()) {
+            m.options[key] = number(value, at);
+        } else if (value.is_string()) {
+            m.options[key] = value.get<std::string>();
+        } else {
+            fail(at, "expected a number, a string or true/false");
+        }
+    }
+    return m;
+}
+
+json method_json(const MethodSpec& m) {
+    json j = {{"name", m.name}};
+    if (m.repetitions) j["repetitions"] = *m.repetitions;
+    if (m.seed) j["seed"] = *m.seed;
+    for (const auto& [key, value] : m.options) {
+        std::visit([&, k = key](const auto& v) { j[k] = v; }, value);
+    }
+    return j;
+}
+
+json volume_json(const SceneVolume& v, const std::filesystem::path& folder) {
+    std::error_code ec;
+    auto mesh = std::filesystem::relative(v.mesh, folder, ec);
+    json j;
+    j["mesh"] = (ec || mesh.empty() ? v.mesh : mesh).generic_string();
+    j["scalar"] = v.scalar;
+    if (v.component >= 0) {
+        j["component"] = v.component;
+    } else {
+        j["component"] = "magnitude";
+    }
+    json color = json::array(), opacity = json::array();
+    for (const auto& p : v.transfer_function.color_points()) {
+        color.push_back({p.s, p.rgb.r, p.rgb.g, p.rgb.b});
+    }
+    for (const auto& p : v.transfer_function.opacity_points()) opacity.push_back({p.s, p.a});
+    j["transfer_function"] = {{"color", color},
+                              {"opacity", opacity},
+                              {"unit_distance", v.transfer_function.unit_distance()}};
+    if (v.time_step) j["time_step"] = v.time_step;
+    return j;
+}
+
 }  // namespace
+
+const std::string& Scene::method_name() const {
+    static const std::string kDefault = kDefaultMethod;
+    return method ? method->name : kDefault;
+}
 
 Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& base_dir,
                           const std::string& name) {
@@ -224,30 +327,34 @@ Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& 
     }
     try {
         Scene scene;
-        check_keys(j, "$",
-                   {"mesh", "scalar", "component", "transfer_function", "camera", "image",
-                    "time_step", "opaque", "flow_volume"});
-        const json& mesh = require(j, "$", "mesh");
-        if (!mesh.is_string() || mesh.get<std::string>().empty())
-            fail("$.mesh", "expected a file path");
-        scene.mesh = base_dir / mesh.get<std::string>();
-        const json& scalar = require(j, "$", "scalar");
-        if (!scalar.is_string() || scalar.get<std::string>().empty())
-            fail("$.scalar", "expected an array name");
-        scene.scalar = scalar.get<std::string>();
-        if (j.contains("component")) {
-            const json& c = j["component"];
-            if (c.is_string()) {
-                if (c.get<std::string>() != "magnitude") {
-                    fail("$.component", "expected \"magnitude\" or a component index");
-                }
-            } else {
-                scene.component = integer(c, "$.component");
-                if (scene.component < 0) fail("$.component", "must be >= 0");
+        scene.source = name;
+        std::set<std::string> top = {"camera",      "image",  "opaque",
+                                     "flow_volume", "method", "volumes"};
+        top.insert(kVolumeKeys.begin(), kVolumeKeys.end());
+        check_keys(j, "$", top);
+        bool has_top_level = false;
+        for (const std::string& key : kVolumeKeys) has_top_level = has_top_level || j.contains(key);
+        if (j.contains("volumes")) {
+            if (has_top_level) {
+                fail("$.volumes",
+                     "a scene has either the top-level mesh, scalar, component, time_step and "
+                     "transfer_function or `volumes`, never both");
             }
+            const json& list = j["volumes"];
+            if (!list.is_array() || list.empty() || list.size() > kMaxVolumes) {
+                fail("$.volumes",
+                     "expected an array of 1 to " + std::to_string(kMaxVolumes) + " volumes");
+            }
+            for (std::size_t i = 0; i < list.size(); ++i) {
+                const std::string path = "$.volumes[" + std::to_string(i) + "]";
+                check_keys(list[i], path, kVolumeKeys);
+                scene.volumes.push_back(volume(list[i], path, base_dir));
+            }
+            scene.volumes_key = true;
+        } else {
+            scene.volumes.push_back(volume(j, "$", base_dir));
         }
-        scene.transfer_function =
-            transfer_function(require(j, "$", "transfer_function"), "$.transfer_function");
+        if (j.contains("method")) scene.method = method(j["method"], "$.method");
         scene.camera = camera(require(j, "$", "camera"), "$.camera");
         const json& image = require(j, "$", "image");
         check_keys(image, "$.image", {"width", "height", "background"});
@@ -268,16 +375,12 @@ Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& 
                 }
             }
         }
-        if (j.contains("time_step")) {
-            scene.time_step = integer(j["time_step"], "$.time_step");
-            if (scene.time_step < 0) fail("$.time_step", "must be >= 0");
-        }
         if (j.contains("opaque")) {
             const json& list = j["opaque"];
             if (!list.is_array()) fail("$.opaque", "expected an array of surfaces");
             for (std::size_t i = 0; i < list.size(); ++i) {
                 const std::string path = "$.opaque[" + std::to_string(i) + "]";
-                check_keys(list[i], path, {"file", "side_set", "boundary", "color"});
+                check_keys(list[i], path, {"file", "side_set", "boundary", "volume", "color"});
                 OpaqueSpec spec;
                 const bool has_file = list[i].contains("file");
                 const bool has_side_set = list[i].contains("side_set");
@@ -301,6 +404,13 @@ Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& 
                         fail(path + ".side_set", "expected a side-set name or \"*\"");
                     }
                     spec.side_set = list[i]["side_set"].get<std::string>();
+                }
+                if (list[i].contains("volume")) {
+                    const int v = integer(list[i]["volume"], path + ".volume");
+                    if (v < 0 || static_cast<std::size_t>(v) >= scene.volumes.size()) {
+                        fail(path + ".volume", "no volume " + std::to_string(v) + " in the scene");
+                    }
+                    spec.volume = static_cast<std::size_t>(v);
                 }
                 if (list[i].contains("color")) {
                     spec.color = vec3(list[i]["color"], path + ".color");
@@ -338,26 +448,19 @@ Result<Scene> read_scene(const std::filesystem::path& path) {
 }
 
 Status write_scene(const Scene& scene, const std::filesystem::path& path) {
+    if (scene.volumes.empty()) {
+        return make_error(ErrorCode::kInvalidArgument, "a scene without a volume", path.string());
+    }
     json j;
     std::error_code ec;
-    auto mesh = std::filesystem::relative(
-        scene.mesh, path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path(),
-        ec);
-    j["mesh"] = (ec || mesh.empty() ? scene.mesh : mesh).generic_string();
-    j["scalar"] = scene.scalar;
-    if (scene.component >= 0) {
-        j["component"] = scene.component;
+    const std::filesystem::path folder =
+        path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+    if (scene.volumes_key || scene.volumes.size() > 1) {
+        j["volumes"] = json::array();
+        for (const SceneVolume& v : scene.volumes) j["volumes"].push_back(volume_json(v, folder));
     } else {
-        j["component"] = "magnitude";
+        j = volume_json(scene.volumes[0], folder);
     }
-    json color = json::array(), opacity = json::array();
-    for (const auto& p : scene.transfer_function.color_points()) {
-        color.push_back({p.s, p.rgb.r, p.rgb.g, p.rgb.b});
-    }
-    for (const auto& p : scene.transfer_function.opacity_points()) opacity.push_back({p.s, p.a});
-    j["transfer_function"] = {{"color", color},
-                              {"opacity", opacity},
-                              {"unit_distance", scene.transfer_function.unit_distance()}};
     const Camera& c = scene.camera;
     j["camera"] = {{"position", {c.position.x, c.position.y, c.position.z}},
                    {"focal_point", {c.focal_point.x, c.focal_point.y, c.focal_point.z}},
@@ -368,28 +471,27 @@ Status write_scene(const Scene& scene, const std::filesystem::path& path) {
     j["image"] = {{"width", scene.width},
                   {"height", scene.height},
                   {"background", {scene.background.x, scene.background.y, scene.background.z}}};
-    if (scene.time_step) j["time_step"] = scene.time_step;
     if (!scene.opaque.empty()) {
         json list = json::array();
         for (const OpaqueSpec& o : scene.opaque) {
+            if (o.surface) continue;  // handed over in memory: no file to name
             json item;
             if (o.boundary) {
                 item["boundary"] = true;
             } else if (o.side_set.empty()) {
-                auto rel = std::filesystem::relative(
-                    o.file,
-                    path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path(),
-                    ec);
+                auto rel = std::filesystem::relative(o.file, folder, ec);
                 item["file"] = (ec || rel.empty() ? o.file : rel).generic_string();
             } else {
                 item["side_set"] = o.side_set;
             }
+            if (o.volume != 0) item["volume"] = o.volume;
             item["color"] = {o.color.x, o.color.y, o.color.z};
             list.push_back(item);
         }
         j["opaque"] = list;
     }
     if (scene.flow_volume) j["flow_volume"] = flow_volume_json(*scene.flow_volume);
+    if (scene.method) j["method"] = method_json(*scene.method);
     const auto tmp = path.string() + ".tmp";
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

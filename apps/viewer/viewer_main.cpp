@@ -91,17 +91,15 @@ class Viewer {
         : vs_(scene),
           window_(window),
           renderer_(renderer),
-          worker_(scene.setup.mesh, scene.setup.adjacency),
+          worker_(scene.sort.mesh(), scene.sort.adjacency()),
           camera_(scene.scene.camera),
           home_(scene.scene.camera),
-          method_(scene.setup.method),
+          method_(scene.sort.method),
           integrator_(integrator) {
-        renderer_.set_mesh(&vs_.setup.mesh, vs_.scalar);
-        std::vector<OpaqueSurface> opaque;
-        for (std::size_t i = 0; i < vs_.opaque.size(); ++i)
-            opaque.push_back({&vs_.opaque[i], vs_.opaque_colors[i]});
-        renderer_.set_opaque(opaque);
-        renderer_.set_transfer_function(vs_.scene.transfer_function, integrator_, vs_.longest_edge);
+        renderer_.set_mesh(&vs_.sort.mesh(), vs_.scalar);
+        renderer_.set_opaque(vs_.opaque.layers());
+        renderer_.set_transfer_function(vs_.volume().transfer_function, integrator_,
+                                        vs_.longest_edge);
         if (vs_.flow) {
             grower_ = std::make_unique<FlowGrower>(*vs_.flow);
             flow_spec_ = vs_.scene.flow_volume.value_or(default_flow_spec(*vs_.flow));
@@ -155,13 +153,13 @@ class Viewer {
             if (last && args.panel_in_screenshot) {
                 active_->bind_framebuffer();
                 last_stats_ = stats;
-                frame_ms_.add(apps::ms_since(frame_start));
+                frame_ms_.add(ms_since(frame_start));
                 // Auto-sized windows appear on ImGui's second frame: lay out twice first.
                 draw_ui(false);
                 draw_ui(false);
                 draw_ui();
             }
-            frame_ms += apps::ms_since(frame_start);
+            frame_ms += ms_since(frame_start);
         }
         const Image image = active_->read_image();
         const Status written = write_image(image, args.screenshot);
@@ -176,7 +174,7 @@ class Viewer {
             flow = text;
         }
         const std::size_t cells =
-            show_flow_ ? flow_->volume->mesh.num_tets() : vs_.setup.mesh.num_real_tets();
+            show_flow_ ? flow_->volume->mesh.num_tets() : vs_.sort.mesh().num_real_tets();
         std::fprintf(stderr,
                      "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), sort %.1f ms mean "
                      "(%zu sorts), classify %.1f ms, raster %.1f ms, %zu cells (%zu drawn), "
@@ -253,7 +251,7 @@ class Viewer {
             active_->blit_to_default(fw, fh);
             draw_ui();
             glfwSwapBuffers(window_);
-            frame_ms_.add(apps::ms_since(frame_start));
+            frame_ms_.add(ms_since(frame_start));
             // Idle (nothing moving, the sort done): wait for events instead of spinning.
             if (idle && !tf_dirty_) glfwWaitEventsTimeout(0.1);
         }
@@ -358,9 +356,10 @@ class Viewer {
             status_ = tf.error().message;
             return;
         }
-        vs_.scene.transfer_function = std::move(tf).value();
+        vs_.volume().transfer_function = std::move(tf).value();
         ++tf_version_;
-        renderer_.set_transfer_function(vs_.scene.transfer_function, integrator_, vs_.longest_edge);
+        renderer_.set_transfer_function(vs_.volume().transfer_function, integrator_,
+                                        vs_.longest_edge);
         if (flow_) set_dye_transfer_function();
     }
 
@@ -402,9 +401,8 @@ class Viewer {
     }
 
     void set_dye_transfer_function() {
-        dye_renderer_->set_transfer_function(
-            dye_transfer_function(flow_->spec, vs_.flow->loaded.tets), integrator_,
-            flow_->longest_edge);
+        dye_renderer_->set_transfer_function(dye_transfer_function(flow_->spec, vs_.flow->mesh()),
+                                             integrator_, flow_->longest_edge);
         ++tf_version_;
     }
 
@@ -421,12 +419,7 @@ class Viewer {
                                      vs_.scene.background);
     }
 
-    std::vector<OpaqueSurface> opaque_surfaces() const {
-        std::vector<OpaqueSurface> opaque;
-        for (std::size_t i = 0; i < vs_.opaque.size(); ++i)
-            opaque.push_back({&vs_.opaque[i], vs_.opaque_colors[i]});
-        return opaque;
-    }
+    std::vector<OpaqueSurface> opaque_surfaces() const { return vs_.opaque.layers(); }
 
     // The panel's flow-volume section: the seed polygon and growth options (a change regrows),
     // what was grown and how long it took.
@@ -451,7 +444,7 @@ class Viewer {
             }
             ImGui::EndCombo();
         }
-        const Bounds3 bounds = vs_.flow->loaded.tets.bounds();
+        const Bounds3 bounds = vs_.flow->mesh().bounds();
         const double diag = std::max(bounds.diagonal(), 1e-30);
         const double lo = std::min({bounds.lo.x, bounds.lo.y, bounds.lo.z});
         const double hi = std::max({bounds.hi.x, bounds.hi.y, bounds.hi.z});
@@ -505,7 +498,7 @@ class Viewer {
     // The panel's dye polygon, outlined in yellow over the picture (drawn with the panel).
     void seed_outline() {
         if (!locator_)
-            locator_ = std::make_unique<PointLocator>(vs_.flow->loaded.tets, vs_.flow->adjacency);
+            locator_ = std::make_unique<PointLocator>(vs_.flow->mesh(), *vs_.flow->adjacency);
         const auto corners = seed_polygon(*vs_.flow, *locator_, flow_spec_);
         if (!corners) return;
         const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -535,7 +528,7 @@ class Viewer {
         const int strips = 60;
         for (int i = 0; i < strips; ++i) {
             const double s = e.lo + span * (i + 0.5) / strips;
-            const Vec3 c = vs_.scene.transfer_function.color(s);
+            const Vec3 c = vs_.volume().transfer_function.color(s);
             draw->AddRectFilled(
                 ImVec2(p0.x + size.x * i / strips, p0.y + size.y - 10),
                 ImVec2(p0.x + size.x * (i + 1) / strips, p0.y + size.y),
@@ -604,9 +597,9 @@ class Viewer {
         ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
         ImGui::SetNextWindowBgAlpha(0.85f);
         ImGui::Begin("tetrender-view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-        ImGui::Text("%s", vs_.scene.mesh.filename().string().c_str());
-        ImGui::Text("%zu cells%s", vs_.setup.mesh.num_real_tets(),
-                    vs_.setup.convexified ? " (+ convexification for the sort)" : "");
+        ImGui::Text("%s", vs_.volume().mesh.filename().string().c_str());
+        ImGui::Text("%zu cells%s", vs_.sort.mesh().num_real_tets(),
+                    vs_.sort.sorted->convexified ? " (+ convexification for the sort)" : "");
         // Scalar array.
         if (ImGui::BeginCombo("scalar", vs_.scalar_name.c_str())) {
             for (const std::string& name : vs_.arrays) {
@@ -643,7 +636,7 @@ class Viewer {
         ImGui::Text("opacity (drag points; double-click adds, right-click removes)");
         opacity_editor();
         float unit = static_cast<float>(vs_.edit.unit_distance);
-        const double diag = std::max(vs_.setup.mesh.bounds().diagonal(), 1e-30);
+        const double diag = std::max(vs_.sort.mesh().bounds().diagonal(), 1e-30);
         if (ImGui::SliderFloat("unit distance", &unit, float(diag * 1e-3), float(diag * 10), "%.4g",
                                ImGuiSliderFlags_Logarithmic)) {
             vs_.edit.unit_distance = std::max(static_cast<double>(unit), 1e-30);
@@ -803,20 +796,17 @@ int run(const Args& args) {
         }
         options.flow_volume = spec;
     }
-    const auto integrator = parse_integrator(args.integrator);
-    if (!integrator || *integrator == Integrator::kExact) {
+    const auto integrator = integrator_named(args.integrator);
+    if (!integrator.ok() || *integrator == Integrator::kExact) {
         std::fprintf(stderr,
                      "tetrender-view: unknown --integrator '%s' (exp-texture, "
                      "preintegrated)\n",
                      args.integrator.c_str());
         return apps::kExitUsage;
     }
-    const auto method = parse_sort_method(args.sort);
-    if (!method) {
-        std::fprintf(stderr,
-                     "tetrender-view: unknown --sort '%s' (auto, mpvo, mpvonc, exact, "
-                     "centroid)\n",
-                     args.sort.c_str());
+    const auto method = sort_method_named(args.sort);
+    if (!method.ok()) {
+        std::fprintf(stderr, "tetrender-view: %s\n", method.error().message.c_str());
         return apps::kExitUsage;
     }
     options.sort = *method;
@@ -842,8 +832,8 @@ int run(const Args& args) {
     auto loaded = load_viewer_scene(options);
     if (!loaded.ok()) return apps::report_error(loaded.error());
     ViewerScene vs = std::move(loaded).value();
-    if (!vs.setup.note.empty())
-        std::fprintf(stderr, "tetrender-view: note: %s\n", vs.setup.note.c_str());
+    if (!vs.sort.note.empty())
+        std::fprintf(stderr, "tetrender-view: note: %s\n", vs.sort.note.c_str());
     if (vs.scene.flow_volume && vs.scene.flow_volume->context) {
         std::fprintf(stderr, "tetrender-view: note: the flow volume's context veil is not drawn\n");
     }
@@ -875,7 +865,7 @@ int run(const Args& args) {
     glfwWindowHint(GLFW_VISIBLE, headless ? GLFW_FALSE : GLFW_TRUE);
     GLFWwindow* window = glfwCreateWindow(
         vs.scene.width, vs.scene.height,
-        ("tetrender-view: " + vs.scene.mesh.filename().string()).c_str(), nullptr, nullptr);
+        ("tetrender-view: " + vs.volume().mesh.filename().string()).c_str(), nullptr, nullptr);
     if (!window) {
         const std::string why = glfw_error_text;
         return fail("no OpenGL 3.3 core context (GLFW: " + why + "); the display offers " +

@@ -3,7 +3,6 @@
 // transfer function the panel edits, the camera and the opaque surfaces. Loaded from a scene
 // file or, for a mesh file, made the way `tetrender render` quick mode makes its scene.
 
-#include <apps/sort_setup.h>
 #include <apps/viewer/viewer_flow.h>
 #include <core/result.h>
 #include <mesh/surface_mesh.h>
@@ -13,6 +12,7 @@
 
 #include <memory>
 #include <optional>
+#include <pipeline/pipeline.h>
 #include <string>
 #include <vector>
 
@@ -42,24 +42,27 @@ struct TransferEdit {
 };
 
 struct ViewerScene {
-    Scene scene;  // camera, size, background; transfer_function as loaded
-    UnstructuredMesh input;
-    apps::SortSetup setup;            // mesh (maybe convexified) and adjacency
+    Scene scene;  // camera, size, background; volumes[0].transfer_function as loaded
+    // What was loaded and prepared (mesh, adjacency, convexification), kept for the session.
+    std::unique_ptr<Pipeline> pipeline;
+    PreparedSort sort;                // the mesh (maybe convexified) and adjacency sorted
     std::vector<std::string> arrays;  // point and cell arrays that can be the scalar
     std::string scalar_name;          // in use ("(constant)" when the mesh has none)
-    std::vector<float> scalar;        // one per setup.mesh point
+    std::vector<float> scalar;        // one per sort.mesh() point
     TransferEdit edit;
     double longest_edge = 1;
-    std::vector<SurfaceMesh> opaque;
-    std::vector<Vec3> opaque_colors;
+    OpaqueSet opaque;
     // The domain for flow volumes: only when the mesh has a 3-component point array. A flow
     // volume to show at start is scene.flow_volume (the scene's key or the command line's).
     std::unique_ptr<FlowDomain> flow;
+
+    SceneVolume& volume() { return scene.volumes[0]; }
+    const SceneVolume& volume() const { return scene.volumes[0]; }
 };
 
-// Loads everything. Errors as `tetrender render` words them (read_scene, load_tet_mesh, an
-// unknown array listing the available ones, a flow volume's vectors that are no vector array
-// of the mesh).
+// Loads everything through the pipeline, as `tetrender render` does. Errors as it words them
+// (read_scene, loading, an unknown array listing the available ones, a flow volume's vectors
+// that are no vector array of the mesh); kUnsupported for a scene of several volumes.
 Result<ViewerScene> load_viewer_scene(const ViewerOptions& options);
 
 // Switches to array `name` (a point or cell array of the mesh, magnitude of vectors): the

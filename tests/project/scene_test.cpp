@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <stdlib.h>
 
 namespace tr {
 namespace {
@@ -30,6 +31,13 @@ const char* kScene = R"({
 
 Result<Scene> parse(const std::string& text) { return parse_scene(text, "/base", "s.json"); }
 
+// A fresh folder of this process's own (build trees run these tests at the same time).
+std::filesystem::path unique_temp_dir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "tetrender_scene_XXXXXX");
+    EXPECT_NE(mkdtemp(pattern.data()), nullptr);
+    return pattern;
+}
+
 std::string replace(std::string text, const std::string& from, const std::string& to) {
     const auto pos = text.find(from);
     EXPECT_NE(pos, std::string::npos) << from;
@@ -39,17 +47,22 @@ std::string replace(std::string text, const std::string& from, const std::string
 TEST(Scene, ParsesEveryKey) {
     auto scene = parse(kScene);
     ASSERT_TRUE(scene.ok()) << scene.error().to_string();
-    EXPECT_EQ(scene->mesh, std::filesystem::path("/base/data/blunt_fin.vtu"));
-    EXPECT_EQ(scene->scalar, "density");
-    EXPECT_EQ(scene->component, 1);
+    ASSERT_EQ(scene->volumes.size(), 1u);
+    EXPECT_FALSE(scene->volumes_key);
+    const SceneVolume& v = scene->volumes[0];
+    EXPECT_EQ(v.mesh, std::filesystem::path("/base/data/blunt_fin.vtu"));
+    EXPECT_EQ(v.scalar, "density");
+    EXPECT_EQ(v.component, 1);
+    EXPECT_EQ(v.time_step, 2);
     EXPECT_EQ(scene->width, 320);
     EXPECT_EQ(scene->height, 200);
-    EXPECT_EQ(scene->time_step, 2);
+    EXPECT_EQ(scene->method_name(), "projected-tetrahedra");
+    EXPECT_EQ(scene->source, "s.json");
     EXPECT_TRUE(scene->camera.parallel);
     EXPECT_DOUBLE_EQ(scene->camera.parallel_scale, 3);
     EXPECT_DOUBLE_EQ(scene->camera.view_angle, 40);
     EXPECT_DOUBLE_EQ(scene->background.z, 0.3);
-    EXPECT_DOUBLE_EQ(scene->transfer_function.unit_distance(), 2.0);
+    EXPECT_DOUBLE_EQ(v.transfer_function.unit_distance(), 2.0);
 }
 
 TEST(Scene, DefaultsAsTheSpecSays) {
@@ -61,8 +74,8 @@ TEST(Scene, DefaultsAsTheSpecSays) {
     text = replace(text, R"(, "background": [0.1, 0.2, 0.3])", "");
     auto scene = parse(text);
     ASSERT_TRUE(scene.ok()) << scene.error().to_string();
-    EXPECT_EQ(scene->component, -1);
-    EXPECT_EQ(scene->time_step, 0);
+    EXPECT_EQ(scene->volumes[0].component, -1);
+    EXPECT_EQ(scene->volumes[0].time_step, 0);
     EXPECT_FALSE(scene->camera.parallel);
     EXPECT_DOUBLE_EQ(scene->camera.view_angle, 30);
     EXPECT_DOUBLE_EQ(scene->camera.parallel_scale, 1);
@@ -151,8 +164,7 @@ TEST(Scene, FlowVolumeExtension) {
     EXPECT_EQ(f.start_time, 0.5);
     EXPECT_EQ(f.unit_distance, 0.1);
     // Written and read back: the same values.
-    const auto dir = std::filesystem::temp_directory_path() / "tetrender_scene_fv_test";
-    std::filesystem::create_directories(dir);
+    const auto dir = unique_temp_dir();
     ASSERT_TRUE(write_scene(*scene, dir / "fv.json").ok());
     auto back = read_scene(dir / "fv.json");
     std::filesystem::remove_all(dir);
@@ -183,18 +195,19 @@ TEST(Scene, FlowVolumeExtension) {
 TEST(Scene, WriteThenReadGivesTheSameScene) {
     auto scene = parse(kScene);
     ASSERT_TRUE(scene.ok());
-    const auto dir = std::filesystem::temp_directory_path() / "tetrender_scene_test";
-    std::filesystem::create_directories(dir);
-    scene->mesh = dir / "meshes" / "m.vtu";
+    const auto dir = unique_temp_dir();
+    scene->volumes[0].mesh = dir / "meshes" / "m.vtu";
     const auto path = dir / "out.scene.json";
     ASSERT_TRUE(write_scene(*scene, path).ok());
     auto back = read_scene(path);
     ASSERT_TRUE(back.ok()) << back.error().to_string();
-    EXPECT_EQ(std::filesystem::weakly_canonical(back->mesh),
-              std::filesystem::weakly_canonical(scene->mesh));
-    EXPECT_EQ(back->component, 1);
+    EXPECT_EQ(std::filesystem::weakly_canonical(back->volumes[0].mesh),
+              std::filesystem::weakly_canonical(scene->volumes[0].mesh));
+    EXPECT_EQ(back->volumes[0].component, 1);
+    EXPECT_EQ(back->volumes[0].time_step, 2);
     EXPECT_EQ(back->camera.position, scene->camera.position);
-    EXPECT_EQ(back->transfer_function.opacity_points().size(), 3u);
+    EXPECT_EQ(back->volumes[0].transfer_function.opacity_points().size(), 3u);
+    EXPECT_FALSE(back->method.has_value());
     std::filesystem::remove_all(dir);
 }
 
@@ -214,6 +227,120 @@ TEST(Scene, ReadsTheVtkHarnessExamples) {
         ++n;
     }
     EXPECT_GE(n, 4);
+}
+
+// Two volumes, each with its own keys (spec: "Several volumes in one space").
+const char* kVolumes = R"({
+  "volumes": [
+    { "mesh": "fluid.vtu", "scalar": "vorticity",
+      "transfer_function": { "color": [[0, 1, 0, 0]], "opacity": [[0, 0.2]], "unit_distance": 1 } },
+    { "mesh": "solid.exo", "scalar": "stress", "component": 0, "time_step": 3,
+      "transfer_function": { "color": [[0, 0, 0, 1]], "opacity": [[0, 0.4]], "unit_distance": 2 } }
+  ],
+  "camera": { "position": [0, 0, 10], "focal_point": [0, 0, 0], "view_up": [0, 1, 0] },
+  "image": { "width": 64, "height": 48 },
+  "method": { "name": "pbvr-image", "repetitions": 64, "seed": 7, "depth": "entry" }
+})";
+
+TEST(Scene, VolumesAndMethod) {
+    auto scene = parse(kVolumes);
+    ASSERT_TRUE(scene.ok()) << scene.error().to_string();
+    ASSERT_EQ(scene->volumes.size(), 2u);
+    EXPECT_TRUE(scene->volumes_key);
+    EXPECT_EQ(scene->volumes[0].mesh, std::filesystem::path("/base/fluid.vtu"));
+    EXPECT_EQ(scene->volumes[0].component, -1);
+    EXPECT_EQ(scene->volumes[1].scalar, "stress");
+    EXPECT_EQ(scene->volumes[1].component, 0);
+    EXPECT_EQ(scene->volumes[1].time_step, 3);
+    EXPECT_DOUBLE_EQ(scene->volumes[1].transfer_function.unit_distance(), 2.0);
+    ASSERT_TRUE(scene->method.has_value());
+    EXPECT_EQ(scene->method_name(), "pbvr-image");
+    EXPECT_EQ(scene->method->repetitions, 64);
+    EXPECT_EQ(scene->method->seed, 7);
+    ASSERT_EQ(scene->method->options.size(), 1u);
+    EXPECT_EQ(std::get<std::string>(scene->method->options.at("depth")), "entry");
+    // Written and read back: the same volumes and method.
+    const auto dir = unique_temp_dir();
+    ASSERT_TRUE(write_scene(*scene, dir / "v.json").ok());
+    auto back = read_scene(dir / "v.json");
+    std::filesystem::remove_all(dir);
+    ASSERT_TRUE(back.ok()) << back.error().to_string();
+    ASSERT_EQ(back->volumes.size(), 2u);
+    EXPECT_EQ(back->volumes[1].time_step, 3);
+    EXPECT_EQ(back->volumes[1].component, 0);
+    EXPECT_EQ(back->volumes[0].mesh.filename(), "fluid.vtu");
+    ASSERT_TRUE(back->method.has_value());
+    EXPECT_EQ(back->method->name, "pbvr-image");
+    EXPECT_EQ(back->method->repetitions, 64);
+    EXPECT_EQ(back->method->seed, 7);
+    EXPECT_EQ(std::get<std::string>(back->method->options.at("depth")), "entry");
+}
+
+TEST(Scene, OneVolumeInTheListReadsAsTheTopLevelKeys) {
+    auto top = parse(kScene);
+    auto listed = parse(R"({"volumes": [{"mesh": "data/blunt_fin.vtu", "scalar": "density",
+        "component": 1, "time_step": 2, "transfer_function": {
+        "color": [[0, 0, 0, 1], [1, 1, 0.5, 0]], "opacity": [[0, 0], [0.5, 0.5], [1, 0.9]],
+        "unit_distance": 2.0}}],
+        "camera": {"position": [0, 0, 10], "focal_point": [0, 0, 0], "view_up": [0, 1, 0],
+                   "view_angle": 40, "parallel": true, "parallel_scale": 3},
+        "image": {"width": 320, "height": 200, "background": [0.1, 0.2, 0.3]}})");
+    ASSERT_TRUE(top.ok() && listed.ok()) << listed.error().to_string();
+    const SceneVolume& a = top->volumes[0];
+    const SceneVolume& b = listed->volumes[0];
+    EXPECT_EQ(a.mesh, b.mesh);
+    EXPECT_EQ(a.scalar, b.scalar);
+    EXPECT_EQ(a.component, b.component);
+    EXPECT_EQ(a.time_step, b.time_step);
+    EXPECT_EQ(a.transfer_function.opacity_points().size(),
+              b.transfer_function.opacity_points().size());
+}
+
+TEST(SceneBadInput, VolumesAndMethodErrorsNameTheJsonPath) {
+    const std::string both =
+        replace(kScene, R"("time_step": 2)", R"("time_step": 2, "volumes": [])");
+    std::string seventeen = R"({"volumes": [)";
+    for (int i = 0; i < 17; ++i) {
+        seventeen +=
+            std::string(i ? "," : "") +
+            R"({"mesh": "m.vtu", "scalar": "s", "transfer_function": {"color": [[0, 1, 1, 1]],
+                     "opacity": [[0, 0.5]], "unit_distance": 1}})";
+    }
+    seventeen += R"(], "camera": {"position": [0, 0, 1], "focal_point": [0, 0, 0],
+                    "view_up": [0, 1, 0]}, "image": {"width": 8, "height": 8}})";
+    const std::pair<std::string, std::string> cases[] = {
+        {both, "$.volumes: a scene has either"},
+        {replace(kVolumes, R"("volumes": [)", R"("volumes": [], "x": [)"), "$.x: unknown key"},
+        {replace(kVolumes, R"("time_step": 3)", R"("time_step": 3, "colour": 1)"),
+         "$.volumes[1].colour: unknown key"},
+        {replace(kVolumes, R"("scalar": "stress",)", ""), "$.volumes[1].scalar: missing"},
+        {replace(kVolumes, R"("component": 0)", R"("component": -2)"),
+         "$.volumes[1].component: must be >= 0"},
+        {seventeen, "$.volumes: expected an array of 1 to 16 volumes"},
+        {replace(kVolumes, R"("repetitions": 64)", R"("repetitions": 0)"),
+         "$.method.repetitions: must be >= 1"},
+        {replace(kVolumes, R"("repetitions": 64)", R"("repetitions": 6.5)"),
+         "$.method.repetitions: expected an integer"},
+        {replace(kVolumes, R"("seed": 7)", R"("seed": "seven")"),
+         "$.method.seed: expected an integer"},
+        {replace(kVolumes, R"("name": "pbvr-image", )", ""), "$.method.name: missing"},
+        {replace(kVolumes, R"("depth": "entry")", R"("depth": [1])"), "$.method.depth: expected"},
+        {replace(kVolumes, R"(, "seed": 7, "depth": "entry" })",
+                 R"(}, "opaque": [{"boundary": true, "volume": 2}])"),
+         "$.opaque[0].volume: no volume 2"},
+    };
+    for (const auto& [text, where] : cases) {
+        auto scene = parse(text);
+        ASSERT_FALSE(scene.ok()) << text;
+        const std::string line = scene.error().to_string();
+        EXPECT_NE(line.find(where), std::string::npos) << line;
+        EXPECT_EQ(line.rfind("s.json: error: ", 0), 0u) << line;
+    }
+    auto empty = parse(R"({"volumes": [], "camera": {"position": [0, 0, 1],
+        "focal_point": [0, 0, 0], "view_up": [0, 1, 0]}, "image": {"width": 8, "height": 8}})");
+    ASSERT_FALSE(empty.ok());
+    EXPECT_NE(empty.error().message.find("$.volumes: expected an array of 1 to 16"),
+              std::string::npos);
 }
 
 TEST(TransferFunction, PiecewiseLinearClampedAndExtinctionAsSpecified) {

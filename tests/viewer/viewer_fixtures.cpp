@@ -1,17 +1,11 @@
-#include <apps/cli_common.h>
-#include <apps/sort_setup.h>
-#include <io/read_surface.h>
 #include <io/write_image.h>
-#include <mesh/point_data.h>
-#include <project/cpu_renderer.h>
-#include <project/opaque_geometry.h>
 #include <project/scene.h>
-#include <sort/visibility_sort.h>
 #include <tests/viewer/viewer_fixtures.h>
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <pipeline/pipeline.h>
 #include <vector>
 
 namespace tr::testing {
@@ -70,39 +64,12 @@ void write_diff(const Image& a, const Image& b, const std::string& path) {
 Image cpu_picture(const std::string& scene_path, Integrator integrator) {
     auto scene = read_scene(scene_path);
     EXPECT_TRUE(scene.ok());
-    auto loaded = apps::load_tet_mesh(scene->mesh.string(), {});
-    EXPECT_TRUE(loaded.ok());
-    auto setup = apps::prepare_sort(std::move(loaded->tets), SortMethod::kAuto);
-    EXPECT_TRUE(setup.ok());
-    auto scalar = point_scalar(setup->mesh, scene->scalar);
-    EXPECT_TRUE(scalar.ok());
-    scalar->resize(setup->mesh.num_points(), 0.0f);
-    const CameraFrame frame(scene->camera, scene->width, scene->height);
-    VisibilitySorter sorter;
-    std::vector<CellId> order;
-    sorter.sort(setup->mesh, setup->adjacency, SortView::from_camera(frame), setup->method, order);
-    const SegmentShader shader(scene->transfer_function, integrator, longest_edge(setup->mesh));
-    std::vector<SurfaceMesh> surfaces;
-    std::vector<OpaqueSurface> opaque;
-    for (const OpaqueSpec& spec : scene->opaque) {
-        auto surface = read_surface(spec.file);
-        EXPECT_TRUE(surface.ok());
-        surfaces.push_back(std::move(surface).value());
-    }
-    for (std::size_t i = 0; i < surfaces.size(); ++i) {
-        opaque.push_back({&surfaces[i], scene->opaque[i].color});
-    }
-    const OpaqueLayer layer = render_opaque(opaque, frame, scene->background);
-    RenderInputs in;
-    in.mesh = &setup->mesh;
-    in.scalar = *scalar;
-    in.order = order;
-    in.shader = &shader;
-    in.camera = &frame;
-    in.background = scene->background;
-    in.opaque_color = &layer.color;
-    in.opaque_depth = &layer.depth;
-    return render_projected_tetrahedra(in);
+    Pipeline pipeline;
+    RenderOptions options;
+    options.integrator = integrator;
+    auto result = pipeline.render(*scene, options);
+    EXPECT_TRUE(result.ok()) << result.error().to_string();
+    return result.ok() ? std::move(result->image) : Image();
 }
 
 }  // namespace tr::testing

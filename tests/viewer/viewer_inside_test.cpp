@@ -2,7 +2,6 @@
 // around a perspective eye, which reach behind it and cannot be projected, are drawn exactly per
 // pixel by the OpenGL renderer; its picture against the CPU renderer's, which clips them exactly.
 #include <apps/cli_common.h>
-#include <apps/sort_setup.h>
 #include <io/read_surface.h>
 #include <io/write_image.h>
 #include <io/write_vtu.h>

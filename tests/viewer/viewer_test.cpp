@@ -2,7 +2,6 @@
 // picture of the same scene, a scripted orbit with a transfer-function change, and the errors
 // for no display, no OpenGL 3.3 core, bad files and bad command lines.
 #include <apps/cli_common.h>
-#include <apps/sort_setup.h>
 #include <apps/viewer/sort_worker.h>
 #include <io/read_surface.h>
 #include <io/write_image.h>
@@ -23,6 +22,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <pipeline/pipeline.h>
 #include <string>
 #include <vector>
 
@@ -167,11 +167,12 @@ TEST(Viewer, ScriptedOrbitAndTransferFunctionChange) {
 // an order older than one already seen.
 TEST(SortWorker, OrdersForTheRequestedViews) {
     const TestScene t = make_test_scene(6);
-    auto loaded = apps::load_tet_mesh(t.mesh, {});
-    ASSERT_TRUE(loaded.ok());
-    auto setup = apps::prepare_sort(std::move(loaded->tets), SortMethod::kAuto);
+    Pipeline pipeline;
+    SceneVolume volume;
+    volume.mesh = t.mesh;
+    auto setup = pipeline.prepared_sort(volume, SortMethod::kAuto);
     ASSERT_TRUE(setup.ok());
-    viewer::SortWorker worker(setup->mesh, setup->adjacency);
+    viewer::SortWorker worker(setup->mesh(), setup->adjacency());
     EXPECT_FALSE(worker.latest().has_value());
     std::uint64_t last_seen = 0;
     for (std::uint64_t id = 1; id <= 12; ++id) {
@@ -190,11 +191,11 @@ TEST(SortWorker, OrdersForTheRequestedViews) {
         ASSERT_EQ(got.view_id, id);
         std::vector<CellId> expected;
         VisibilitySorter sorter;
-        sorter.sort(setup->mesh, setup->adjacency, view, SortMethod::kMpvo, expected);
+        sorter.sort(setup->mesh(), setup->adjacency(), view, SortMethod::kMpvo, expected);
         EXPECT_EQ(*got.order, expected);
         std::vector<CellId> sorted = *got.order;
         std::sort(sorted.begin(), sorted.end());
-        ASSERT_EQ(sorted.size(), setup->mesh.num_real_tets());
+        ASSERT_EQ(sorted.size(), setup->mesh().num_real_tets());
         for (std::size_t i = 0; i < sorted.size(); ++i) ASSERT_EQ(sorted[i], i);
         last_seen = id;
     }

@@ -6,21 +6,22 @@
 #include <core/image.h>
 #include <flowvol/flow_volume.h>
 #include <project/opaque_geometry.h>
+#include <project/scene.h>
 #include <project/segment_shader.h>
 #include <project/transfer_function.h>
 
 #include <vector>
 
-namespace tr::apps {
+namespace tr {
 
 struct FlowVolumeView {
     Camera camera;
     int width, height;
     Vec3 background;
     std::vector<OpaqueSurface> opaque;  // e.g. the body in the flow
-    Vec3 dye_color{0.85, 0.9, 1.0};
-    double dye_opacity = 0.3;  // of a slab of concentration 1, unit_distance thick
-    double unit_distance = 0;  // 0: the domain's bounding diagonal / 30
+    // The dye's colour, opacity and unit distance (the rest of the spec is not used here):
+    // flow_volume_scene.h dye_transfer_function.
+    FlowVolumeSpec dye;
     // The domain's boundary as a faint veil in front of the dye (its nearest surface, shaded,
     // at 15% over the picture): context for where the flow is.
     const SurfaceMesh* context = nullptr;
@@ -53,4 +54,4 @@ class FlowVolumeRenderer {
     std::size_t drawn_ = 0;
 };
 
-}  // namespace tr::apps
+}  // namespace tr

@@ -1,23 +1,14 @@
-#include <apps/flowvol_render.h>
 #include <project/cpu_renderer.h>
 
 #include <cmath>
 #include <numeric>
+#include <pipeline/flow_volume_render.h>
+#include <pipeline/flow_volume_scene.h>
 
-namespace tr::apps {
+namespace tr {
 namespace {
 
 constexpr double kVeilOpacity = 0.15;
-
-// Dye: one glow colour; opacity by concentration (1 for incompressible flow), by default a
-// slab of a thirtieth of the domain's diagonal letting through 70%.
-TransferFunction dye(const TetMesh& domain, const FlowVolumeView& view) {
-    const double unit =
-        view.unit_distance > 0 ? view.unit_distance : domain.bounds().diagonal() / 30.0;
-    return TransferFunction::create({{0.0, view.dye_color}}, {{0.0, 0.0}, {1.0, view.dye_opacity}},
-                                    unit)
-        .value();
-}
 
 }  // namespace
 
@@ -25,7 +16,7 @@ FlowVolumeRenderer::FlowVolumeRenderer(const FlowVolume& fv, const TetMesh& doma
                                        const FlowVolumeView& view)
     : fv_(fv),
       frame_(view.camera, view.width, view.height),
-      tf_(dye(domain, view)),
+      tf_(dye_transfer_function(view.dye, domain)),
       shader_(tf_, Integrator::kPreintegrated, longest_edge(fv.mesh)),
       scalar_(fv.mesh.num_points(), 1.0f),
       image_(view.width, view.height, Vec3f(view.background)) {
@@ -74,4 +65,4 @@ void FlowVolumeRenderer::draw_up_to(std::size_t end) {
     drawn_ = end;
 }
 
-}  // namespace tr::apps
+}  // namespace tr

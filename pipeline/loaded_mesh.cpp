@@ -1,0 +1,84 @@
+#include <core/config.h>
+
+#include <pipeline/loaded_mesh.h>
+
+#if TETRENDER_HAS_VTK
+#include <io/read_mesh.h>
+#endif
+#if TETRENDER_HAS_CGAL
+#include <mesh/copyleft/delaunay.h>
+#endif
+
+#include <chrono>
+
+namespace tr {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+Error with_where(Error error, const std::string& path) {
+    error.where = error.where.empty() ? path : path + ": " + error.where;
+    return error;
+}
+
+Result<LoadedMesh> load_tet_mesh(UnstructuredMesh input, const std::string& name,
+                                 const LoadOptions& options) {
+    LoadedMesh loaded;
+    loaded.input = std::move(input);
+    const auto start = std::chrono::steady_clock::now();
+    if (loaded.input.is_point_cloud() || options.delaunay) {
+#if TETRENDER_HAS_CGAL
+        UnstructuredMesh cloud;
+        cloud.points = loaded.input.points;
+        cloud.point_fields = loaded.input.point_fields;
+        auto tets = delaunay_tetrahedralize(cloud);
+        if (!tets.ok()) {
+            Error e = tets.error();
+            if (e.where.empty()) e.where = name;
+            return e;
+        }
+        loaded.tets = std::move(tets).value();
+        loaded.used_delaunay = true;
+        loaded.report.num_tets = loaded.tets.num_tets();
+#else
+        return make_error(ErrorCode::kUnsupported,
+                          "a point cloud needs Delaunay tetrahedralization: this build has no "
+                          "CGAL (TETRENDER_WITH_CGAL=OFF)",
+                          name);
+#endif
+    } else {
+        TetrahedralizeOptions tet_options;
+        tet_options.merge_points = !options.no_merge;
+        tet_options.merge_tolerance = options.merge_tolerance;
+        tet_options.progress = options.progress;
+        auto tets = tetrahedralize(loaded.input, tet_options, &loaded.report);
+        if (!tets.ok()) return with_where(tets.error(), name);
+        loaded.tets = std::move(tets).value();
+    }
+    loaded.tetrahedralize_ms = ms_since(start);
+    return loaded;
+}
+
+Result<LoadedMesh> load_tet_mesh(const std::filesystem::path& path, const LoadOptions& options) {
+#if TETRENDER_HAS_VTK
+    const auto start = std::chrono::steady_clock::now();
+    ReadOptions read_options;
+    read_options.time_step = options.time_step;
+    read_options.progress = options.progress;
+    TR_TRY(UnstructuredMesh input, read_mesh(path, read_options));
+    const double read_ms = ms_since(start);
+    TR_TRY(LoadedMesh loaded, load_tet_mesh(std::move(input), path.string(), options));
+    loaded.read_ms = read_ms;
+    return loaded;
+#else
+    (void)options;
+    return make_error(ErrorCode::kUnsupported,
+                      "this build reads no mesh files (TETRENDER_WITH_VTK=OFF): hand the mesh "
+                      "over in memory",
+                      path.string());
+#endif
+}
+
+}  // namespace tr

@@ -1,0 +1,50 @@
+#pragma once
+// A mesh ready for the renderers: read from a file (io/, when built with VTK) or handed over,
+// and made tetrahedral (the conforming split, or Delaunay for a point cloud when built with
+// CGAL).
+
+#include <core/progress.h>
+#include <core/result.h>
+#include <mesh/tet_mesh.h>
+#include <mesh/tetrahedralize.h>
+#include <mesh/unstructured_mesh.h>
+
+#include <filesystem>
+
+namespace tr {
+
+// How a file becomes tets.
+struct LoadOptions {
+    int time_step = 0;
+    double merge_tolerance = 0.0;  // 0: exact merging (TetrahedralizeOptions)
+    bool no_merge = false;
+    bool delaunay = false;  // Delaunay of the points even when the file has cells
+    ProgressFn progress;    // stages "reading", "tetrahedralizing"
+};
+
+struct LoadedMesh {
+    UnstructuredMesh input;  // as read (its fields are also on `tets`)
+    TetMesh tets;
+    TetrahedralizeReport report;
+    bool used_delaunay = false;
+    double read_ms = 0;
+    double tetrahedralize_ms = 0;
+};
+
+// Reads `path` (io/read_mesh.h lists the formats) and tetrahedralizes it. Errors: those of
+// read_mesh and tetrahedralize, with the path in `where`; kUnsupported for a point cloud in a
+// build without CGAL, or for any file in a build without VTK. Cost: the reader's and the
+// split's, O(file size + cells log cells).
+Result<LoadedMesh> load_tet_mesh(const std::filesystem::path& path, const LoadOptions& options);
+
+// The same for a mesh handed over in memory (`name` is used in messages).
+Result<LoadedMesh> load_tet_mesh(UnstructuredMesh input, const std::string& name,
+                                 const LoadOptions& options);
+
+// Milliseconds since `start` (steady clock), for the stats every stage reports.
+double ms_since(std::chrono::steady_clock::time_point start);
+
+// `error` with `path` in front of its where ("path: where" or "path").
+Error with_where(Error error, const std::string& path);
+
+}  // namespace tr

@@ -1,0 +1,268 @@
+#include <core/config.h>
+#include <mesh/point_data.h>
+
+#include <pipeline/method.h>
+#include <pipeline/pipeline.h>
+
+#if TETRENDER_HAS_VTK
+#include <io/read_surface.h>
+#endif
+
+#include <cmath>
+#include <exception>
+
+namespace tr {
+namespace {
+
+bool same_transfer_function(const TransferFunction& a, const TransferFunction& b) {
+    if (a.unit_distance() != b.unit_distance()) return false;
+    const auto& ac = a.color_points();
+    const auto& bc = b.color_points();
+    const auto& ao = a.opacity_points();
+    const auto& bo = b.opacity_points();
+    if (ac.size() != bc.size() || ao.size() != bo.size()) return false;
+    for (std::size_t i = 0; i < ac.size(); ++i) {
+        if (ac[i].s != bc[i].s || ac[i].rgb != bc[i].rgb) return false;
+    }
+    for (std::size_t i = 0; i < ao.size(); ++i) {
+        if (ao[i].s != bo[i].s || ao[i].a != bo[i].a) return false;
+    }
+    return true;
+}
+
+Error scene_error(const Scene& scene, ErrorCode code, const std::string& message) {
+    return make_error(code, message, scene.source);
+}
+
+}  // namespace
+
+Result<SortMethod> sort_method_named(std::string_view name) {
+    if (auto m = parse_sort_method(name)) return *m;
+    return make_error(ErrorCode::kInvalidArgument, "unknown sort '" + std::string(name) +
+                                                       "' (auto, mpvo, mpvonc, exact, centroid)");
+}
+
+Result<Integrator> integrator_named(std::string_view name) {
+    if (auto i = parse_integrator(name)) return *i;
+    return make_error(ErrorCode::kInvalidArgument,
+                      "unknown integrator '" + std::string(name) +
+                          "' (preintegrated, exact, exp-texture; reference where rendering "
+                          "takes it)");
+}
+
+Status set_integrator_option(RenderOptions& options, std::string_view name) {
+    if (name == "reference") {
+        options.reference = true;
+        return {};
+    }
+    TR_TRY(options.integrator, integrator_named(name));
+    options.reference = false;
+    return {};
+}
+
+std::vector<OpaqueSurface> OpaqueSet::layers() const {
+    std::vector<OpaqueSurface> out;
+    for (std::size_t i = 0; i < surfaces.size(); ++i) out.push_back({surfaces[i].get(), colors[i]});
+    return out;
+}
+
+Pipeline::Pipeline(PipelineOptions options) : options_(std::move(options)) {
+    if (!options_.load.progress) options_.load.progress = options_.progress;
+}
+
+void Pipeline::clear() {
+    meshes_.clear();
+    sorted_.clear();
+    shader_.reset();
+}
+
+Status Pipeline::check(const Scene& scene, const RenderOptions& options) const {
+    if (scene.volumes.empty()) {
+        return scene_error(scene, ErrorCode::kInvalidArgument, "the scene has no volume");
+    }
+    const RenderMethod* method = find_method(scene.method_name());
+    if (!method) {
+        std::string names;
+        for (const std::string& n : method_names()) names += (names.empty() ? "" : ", ") + n;
+        return scene_error(
+            scene, ErrorCode::kInvalidArgument,
+            "$.method.name: unknown method '" + scene.method_name() + "' (" + names + ")");
+    }
+    return method->check(scene, options);
+}
+
+Result<RenderResult> Pipeline::render(const Scene& scene, const RenderOptions& options) {
+    TR_TRY_STATUS(check(scene, options));
+    const RenderMethod* method = find_method(scene.method_name());
+    try {
+        return method->render(*this, scene, options);
+    } catch (const std::bad_alloc&) {
+        return scene_error(scene, ErrorCode::kInternal, "out of memory while rendering");
+    }
+}
+
+std::string Pipeline::mesh_key(const SceneVolume& volume) const {
+    std::string key;
+    if (volume.tets) {
+        key = "tets@" + std::to_string(reinterpret_cast<std::uintptr_t>(volume.tets.get()));
+    } else if (volume.data) {
+        key = "data@" + std::to_string(reinterpret_cast<std::uintptr_t>(volume.data.get()));
+    } else {
+        key = "file:" + volume.mesh.string();
+    }
+    return key + "#" + std::to_string(volume.time_step);
+}
+
+Result<std::shared_ptr<const LoadedMesh>> Pipeline::mesh(const SceneVolume& volume) {
+    const std::string key = mesh_key(volume);
+    if (auto it = meshes_.find(key); it != meshes_.end()) return it->second;
+    LoadOptions load = options_.load;
+    load.time_step = volume.time_step;
+    std::shared_ptr<LoadedMesh> loaded;
+    if (volume.tets) {
+        loaded = std::make_shared<LoadedMesh>();
+        loaded->tets = *volume.tets;
+        loaded->report.num_tets = loaded->tets.num_tets();
+    } else if (volume.data) {
+        TR_TRY(LoadedMesh m, load_tet_mesh(*volume.data, volume.mesh.string(), load));
+        loaded = std::make_shared<LoadedMesh>(std::move(m));
+    } else {
+        TR_TRY(LoadedMesh m, load_tet_mesh(volume.mesh, load));
+        loaded = std::make_shared<LoadedMesh>(std::move(m));
+    }
+    meshes_[key] = loaded;
+    return std::shared_ptr<const LoadedMesh>(loaded);
+}
+
+Result<std::shared_ptr<const SortedMesh>> Pipeline::sorted_mesh(const SceneVolume& volume,
+                                                                bool convexify) {
+    TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, mesh(volume));
+    const std::string key = mesh_key(volume) + (convexify ? "/convexified" : "/bare");
+    if (auto it = sorted_.find(key); it != sorted_.end()) return it->second;
+    // A convex mesh needs no fill: both flavours are the same.
+    const std::string other = mesh_key(volume) + (convexify ? "/bare" : "/convexified");
+    if (auto it = sorted_.find(other); it != sorted_.end() && it->second->real_convex) {
+        sorted_[key] = it->second;
+        return it->second;
+    }
+    // The sorted mesh shares the loaded tets (aliasing the LoadedMesh that owns them).
+    std::shared_ptr<const TetMesh> tets(loaded, &loaded->tets);
+    auto prepared = prepare_sorted_mesh(std::move(tets), convexify);
+    if (!prepared.ok()) return with_where(prepared.error(), volume.mesh.string());
+    auto sorted = std::make_shared<const SortedMesh>(std::move(prepared).value());
+    sorted_[key] = sorted;
+    return std::shared_ptr<const SortedMesh>(sorted);
+}
+
+Result<PreparedSort> Pipeline::prepared_sort(const SceneVolume& volume, SortMethod method) {
+    TR_TRY(std::shared_ptr<const SortedMesh> sorted,
+           sorted_mesh(volume, wants_convexification(method)));
+    return prepare_sort(std::move(sorted), method);
+}
+
+Result<ViewOrder> Pipeline::visibility_order(const SceneVolume& volume, const CameraFrame& frame,
+                                             SortMethod method) {
+    ViewOrder view;
+    TR_TRY(view.prepared, prepared_sort(volume, method));
+    view.stats = sorter_.sort(view.prepared.mesh(), view.prepared.adjacency(),
+                              SortView::from_camera(frame), view.prepared.method, view.order);
+    view.exact = order_is_exact(view.prepared, view.stats);
+    return view;
+}
+
+Result<std::vector<float>> Pipeline::scalar(const SceneVolume& volume, const TetMesh& on) {
+    auto values = point_scalar(on, volume.scalar, volume.component);
+    if (!values.ok()) return with_where(values.error(), volume.mesh.string());
+    // Points beyond the real ones (convexification) carry zeros: never drawn, not checked.
+    TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, mesh(volume));
+    const std::size_t real_points = std::min(values->size(), loaded->tets.num_points());
+    for (std::size_t p = 0; p < real_points; ++p) {
+        if (!std::isfinite((*values)[p])) {
+            return make_error(
+                ErrorCode::kInvalidMesh,
+                "array '" + volume.scalar + "' is not finite at point " + std::to_string(p),
+                volume.mesh.string());
+        }
+    }
+    return values;
+}
+
+Result<FlowDomain> Pipeline::flow_domain(const SceneVolume& volume) {
+    TR_TRY(std::shared_ptr<const SortedMesh> bare, sorted_mesh(volume, false));
+    TR_TRY(std::shared_ptr<const LoadedMesh> loaded, mesh(volume));
+    FlowDomain domain;
+    domain.path = volume.data || volume.tets ? std::string() : volume.mesh.string();
+    domain.adjacency = std::shared_ptr<const FaceAdjacency>(bare, &bare->adjacency);
+    domain.vector_arrays = vector_arrays(loaded->tets);
+    domain.loaded = std::move(loaded);
+    return domain;
+}
+
+Result<OpaqueSet> Pipeline::opaque(const Scene& scene) {
+    OpaqueSet set;
+    for (const OpaqueSpec& spec : scene.opaque) {
+        if (spec.surface) {
+            set.surfaces.push_back(spec.surface);
+            set.colors.push_back(spec.color);
+            continue;
+        }
+        if (!spec.file.empty()) {
+#if TETRENDER_HAS_VTK
+            TR_TRY(SurfaceMesh surface, read_surface(spec.file));
+            set.surfaces.push_back(std::make_shared<const SurfaceMesh>(std::move(surface)));
+            set.colors.push_back(spec.color);
+            continue;
+#else
+            return make_error(ErrorCode::kUnsupported,
+                              "this build reads no surface files (TETRENDER_WITH_VTK=OFF)",
+                              spec.file.string());
+#endif
+        }
+        if (spec.volume >= scene.volumes.size()) {
+            return scene_error(scene, ErrorCode::kInvalidArgument,
+                               "an opaque surface names volume " + std::to_string(spec.volume) +
+                                   ", which the scene does not have");
+        }
+        const SceneVolume& volume = scene.volumes[spec.volume];
+        if (spec.boundary) {
+            TR_TRY(std::shared_ptr<const SortedMesh> bare, sorted_mesh(volume, false));
+            set.surfaces.push_back(std::make_shared<const SurfaceMesh>(
+                boundary_surface(*bare->mesh, bare->adjacency)));
+            set.colors.push_back(spec.color);
+            continue;
+        }
+        TR_TRY(std::shared_ptr<const LoadedMesh> loaded, mesh(volume));
+        bool found = false;
+        for (const SurfaceMesh& s : loaded->input.surfaces) {
+            if (spec.side_set == "*" || s.name == spec.side_set) {
+                set.surfaces.push_back(std::make_shared<const SurfaceMesh>(s));
+                set.colors.push_back(spec.color);
+                found = true;
+            }
+        }
+        if (!found) {
+            std::string names;
+            for (const SurfaceMesh& s : loaded->input.surfaces)
+                names += (names.empty() ? "" : ", ") + s.name;
+            return make_error(ErrorCode::kNotFound,
+                              "no side set '" + spec.side_set + "' in the mesh (it has: " +
+                                  (names.empty() ? std::string("none") : names) + ")",
+                              volume.mesh.string());
+        }
+    }
+    return set;
+}
+
+const SegmentShader& Pipeline::shader(const TransferFunction& tf, Integrator integrator,
+                                      double max_length) {
+    if (!shader_ || shader_->integrator != integrator || shader_->max_length != max_length ||
+        !same_transfer_function(shader_->tf, tf)) {
+        auto cached = std::make_unique<CachedShader>(CachedShader{tf, integrator, max_length, {}});
+        // The shader keeps a reference to its transfer function: the cached copy.
+        cached->shader = std::make_unique<SegmentShader>(cached->tf, integrator, max_length);
+        shader_ = std::move(cached);
+    }
+    return *shader_->shader;
+}
+
+}  // namespace tr

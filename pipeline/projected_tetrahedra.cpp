@@ -1,0 +1,191 @@
+#include <core/parallel.h>
+#include <project/cpu_renderer.h>
+#include <project/reference_raycaster.h>
+
+#include <chrono>
+#include <pipeline/flow_volume_render.h>
+#include <pipeline/projected_tetrahedra.h>
+
+namespace tr {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void add_load_stats(NamedStats& stats, const LoadedMesh& loaded) {
+    stats.set("load_ms", loaded.read_ms);
+    stats.set("tetrahedralize_ms", loaded.tetrahedralize_ms);
+}
+
+// The dye grown from volume 0's mesh, drawn over the opaque geometry without sorting.
+Result<RenderResult> render_flow_volume(Pipeline& pipeline, const Scene& scene,
+                                        const RenderOptions& options) {
+    const SceneVolume& volume = scene.volumes[0];
+    RenderResult result;
+    TR_TRY(const FlowDomain domain, pipeline.flow_domain(volume));
+    add_load_stats(result.stats, *domain.loaded);
+    // A scene file's scalar is checked (the file stays a valid spec scene) but not drawn.
+    if (!volume.scalar.empty()) TR_TRY_STATUS(pipeline.scalar(volume, domain.mesh()));
+    auto start = Clock::now();
+    TR_TRY(FlowVolume grown,
+           grow_scene_flow_volume(domain, *scene.flow_volume, pipeline.options().progress));
+    auto fv = std::make_shared<const FlowVolume>(std::move(grown));
+    result.stats.set("grow_ms", ms_since(start));
+    if (fv->unresolved_edges > 0) {
+        result.notes.push_back(std::to_string(fv->unresolved_edges) +
+                               " stretched front edges were left unsplit (at the refinement "
+                               "limit, e.g. at a stagnation point, or their new particle left "
+                               "the domain)");
+    }
+    TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
+    FlowVolumeView view{scene.camera,    scene.width,        scene.height, scene.background,
+                        opaque.layers(), *scene.flow_volume, nullptr};
+    SurfaceMesh boundary;
+    if (scene.flow_volume->context) {
+        boundary = boundary_surface(domain.mesh(), *domain.adjacency);
+        view.context = &boundary;
+    }
+    start = Clock::now();
+    FlowVolumeRenderer renderer(*fv, domain.mesh(), view);
+    if (options.on_flow_volume_layer) {
+        for (std::size_t k = 0; k < fv->layer_tets.size(); ++k) {
+            TR_TRY_STATUS(
+                options.on_flow_volume_layer(k, renderer.render_up_to(fv->layer_tets[k])));
+        }
+    }
+    result.image = renderer.render_up_to(fv->mesh.num_tets());
+    result.stats.set("render_ms", ms_since(start));
+    result.stats.set("layers", fv->layer_tets.size());
+    result.stats.set("flow_volume_tets", fv->mesh.num_tets());
+    result.stats.set("particles_inserted", fv->particles_inserted);
+    result.stats.set("particles_stopped", fv->particles_stopped);
+    result.stats.set("unresolved_edges", fv->unresolved_edges);
+    result.stats.set("width", scene.width);
+    result.stats.set("height", scene.height);
+    result.flow_volume = std::move(fv);
+    return result;
+}
+
+// The brute-force reference ray caster: no sort, no opaque geometry.
+Result<RenderResult> render_reference_picture(Pipeline& pipeline, const Scene& scene) {
+    const SceneVolume& volume = scene.volumes[0];
+    RenderResult result;
+    TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, pipeline.mesh(volume));
+    add_load_stats(result.stats, *loaded);
+    TR_TRY(const std::vector<float> scalar, pipeline.scalar(volume, loaded->tets));
+    const auto start = Clock::now();
+    result.image =
+        render_reference(loaded->tets, scalar, volume.transfer_function,
+                         CameraFrame(scene.camera, scene.width, scene.height), scene.background);
+    result.stats.set("raster_ms", ms_since(start));
+    result.stats.set("cells", loaded->tets.num_real_tets());
+    result.stats.set("integrator", "reference");
+    result.stats.set("width", scene.width);
+    result.stats.set("height", scene.height);
+    return result;
+}
+
+class ProjectedTetrahedra final : public RenderMethod {
+  public:
+    std::string_view name() const override { return kDefaultMethod; }
+
+    Status check(const Scene& scene, const RenderOptions& options) const override {
+        if (scene.method) {
+            for (const auto& [key, value] : scene.method->options) {
+                return method_option_error(scene, key,
+                                           "unknown key for projected-tetrahedra (it takes "
+                                           "name, and ignores repetitions and seed)");
+            }
+        }
+        if (scene.volumes.size() > 1) {
+            return make_error(ErrorCode::kUnsupported,
+                              "$.volumes: projected tetrahedra draw one volume; several volumes "
+                              "in one space need fused rendering (not implemented yet: issue 12)",
+                              scene.source);
+        }
+        if (options.reference && !scene.opaque.empty()) {
+            return make_error(ErrorCode::kUnsupported,
+                              "the reference ray caster draws no opaque geometry", scene.source);
+        }
+        if (options.reference && scene.flow_volume) {
+            return make_error(ErrorCode::kUnsupported,
+                              "the reference ray caster does not draw flow volumes", scene.source);
+        }
+        return {};
+    }
+
+    Result<RenderResult> render(Pipeline& pipeline, const Scene& scene,
+                                const RenderOptions& options) const override {
+        if (scene.flow_volume) return render_flow_volume(pipeline, scene, options);
+        if (options.reference) return render_reference_picture(pipeline, scene);
+        const SceneVolume& volume = scene.volumes[0];
+        RenderResult result;
+        if (scene.method && (scene.method->repetitions || scene.method->seed)) {
+            result.notes.push_back(
+                "repetitions and seed apply to the stochastic methods: projected tetrahedra "
+                "ignore them");
+        }
+        TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, pipeline.mesh(volume));
+        add_load_stats(result.stats, *loaded);
+        const CameraFrame frame(scene.camera, scene.width, scene.height);
+        TR_TRY(const ViewOrder view, pipeline.visibility_order(volume, frame, options.sort));
+        const PreparedSort& prepared = view.prepared;
+        const SortStats& sort_stats = view.stats;
+        if (!prepared.note.empty()) result.notes.push_back(prepared.note);
+        if (prepared.exact && !view.exact) {
+            result.notes.push_back(std::to_string(sort_stats.cells_in_cycles) +
+                                   " cells lie in visibility cycles of this view, broken by "
+                                   "rule: the order is not exact there");
+        }
+        result.stats.set("adjacency_ms", prepared.sorted->adjacency_ms);
+        result.stats.set("convexify_ms", prepared.sorted->convexify_ms);
+        TR_TRY(const std::vector<float> scalar, pipeline.scalar(volume, prepared.mesh()));
+        result.stats.set("sort_ms", sort_stats.milliseconds);
+        auto start = Clock::now();
+        const SegmentShader& shader = pipeline.shader(volume.transfer_function, options.integrator,
+                                                      longest_edge(prepared.mesh()));
+        result.stats.set("shader_ms", ms_since(start));
+        TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
+        start = Clock::now();
+        const OpaqueLayer layer = opaque.empty()
+                                      ? OpaqueLayer{}
+                                      : render_opaque(opaque.layers(), frame, scene.background);
+        result.stats.set("opaque_ms", ms_since(start));
+
+        RenderInputs in;
+        if (!opaque.empty()) {
+            in.opaque_color = &layer.color;
+            in.opaque_depth = &layer.depth;
+        }
+        in.mesh = &prepared.mesh();
+        in.scalar = scalar;
+        in.order = view.order;
+        in.shader = &shader;
+        in.camera = &frame;
+        in.background = scene.background;
+        RenderStats raster;
+        result.image = render_projected_tetrahedra(in, &raster);
+        NamedStats& stats = result.stats;
+        stats.set("raster_ms", raster.raster_ms);
+        stats.set("cells", loaded->tets.num_real_tets());
+        stats.set("cells_drawn", raster.cells_drawn);
+        stats.set("fragments", raster.fragments);
+        stats.set("sort", std::string(sort_method_name(options.sort)));
+        stats.set("sort_exact", view.exact);
+        stats.set("convexified", prepared.sorted->convexified);
+        stats.set("cells_by_fallback", sort_stats.by_fallback);
+        stats.set("cells_in_cycles", sort_stats.cells_in_cycles);
+        stats.set("integrator", std::string(integrator_name(options.integrator)));
+        stats.set("threads", thread_count());
+        stats.set("width", scene.width);
+        stats.set("height", scene.height);
+        return result;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<RenderMethod> make_projected_tetrahedra_method() {
+    return std::make_unique<ProjectedTetrahedra>();
+}
+
+}  // namespace tr

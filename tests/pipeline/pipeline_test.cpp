@@ -1,0 +1,321 @@
+// The pipeline: methods dispatched by name, a `volumes` scene of one entry rendering as the
+// top-level keys, the exact-sort policy judged on the mesh actually sorted, what is kept
+// between views, and flow volumes and opaque surfaces through the one entry point.
+#include <core/config.h>
+#include <mesh/tetrahedralize.h>
+#include <project/colormap.h>
+#include <project/opaque_geometry.h>
+#include <sort/order_verifier.h>
+#include <tests/mesh/mixed_grid.h>
+#include <tests/support/image_check.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <pipeline/method.h>
+#include <pipeline/pipeline.h>
+
+namespace tr {
+namespace {
+
+using testing::make_mixed_grid;
+using testing::MixedGridOptions;
+
+// A mixed grid over [0, n]^3 (minus `skip`'s boxes) with scalar "wave" and velocity "v".
+std::shared_ptr<const TetMesh> grid(int n, bool (*skip)(int, int, int) = nullptr, int nz = 0) {
+    MixedGridOptions o;
+    o.nx = o.ny = n;
+    o.nz = nz > 0 ? nz : n;
+    o.skip_box = skip;
+    auto mesh = tetrahedralize(make_mixed_grid(o)).value();
+    std::vector<double> wave, v;
+    for (const Vec3& p : mesh.points()) {
+        wave.push_back(0.5 + 0.45 * std::sin(1.3 * p.x) * std::cos(0.9 * p.y + 0.4 * p.z));
+        v.insert(v.end(), {1.0, 0.2 * std::sin(p.x), 0.0});
+    }
+    EXPECT_TRUE(mesh.add_point_field(make_double_field("wave", 1, wave)).ok());
+    EXPECT_TRUE(mesh.add_point_field(make_double_field("v", 3, v)).ok());
+    return std::make_shared<const TetMesh>(std::move(mesh));
+}
+
+MethodSpec method(const std::string& name, std::optional<int> repetitions = {},
+                  std::optional<std::int64_t> seed = {}) {
+    MethodSpec m;
+    m.name = name;
+    m.repetitions = repetitions;
+    m.seed = seed;
+    return m;
+}
+
+bool ring(int i, int j, int) { return i >= 1 && i <= 3 && j >= 1 && j <= 3; }
+
+Scene scene_of(std::shared_ptr<const TetMesh> mesh, int size = 96) {
+    Scene scene;
+    SceneVolume v;
+    v.mesh = "grid";
+    v.tets = std::move(mesh);
+    v.scalar = "wave";
+    v.transfer_function = make_quick_transfer_function("viridis", 0.05, 0.95, 0.6, 1.5).value();
+    scene.volumes.push_back(std::move(v));
+    scene.camera = framing_camera(scene.volumes[0].tets->bounds(), Vec3(1.0, -1.2, 0.8));
+    scene.width = scene.height = size;
+    scene.background = Vec3(0.05, 0.05, 0.1);
+    return scene;
+}
+
+bool identical(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height &&
+           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Vec3f)) == 0;
+}
+
+TEST(Methods, EveryNameOfTheSpecDispatches) {
+    EXPECT_EQ(method_names(), (std::vector<std::string>{"projected-tetrahedra", "pbvr-object",
+                                                        "pbvr-image", "splat"}));
+    for (const std::string& name : method_names()) {
+        ASSERT_NE(find_method(name), nullptr) << name;
+        EXPECT_EQ(find_method(name)->name(), name);
+    }
+    EXPECT_EQ(find_method("raytrace"), nullptr);
+}
+
+TEST(Methods, UnknownNameIsAnErrorListingTheMethods) {
+    Scene scene = scene_of(grid(2));
+    scene.source = "s.json";
+    scene.method = method("raytrace");
+    Pipeline pipeline;
+    auto result = pipeline.render(scene);
+    ASSERT_FALSE(result.ok());
+    const std::string line = result.error().to_string();
+    EXPECT_EQ(line.rfind("s.json: error: $.method.name: unknown method 'raytrace'", 0), 0u) << line;
+    EXPECT_NE(line.find("projected-tetrahedra, pbvr-object, pbvr-image, splat"), std::string::npos)
+        << line;
+}
+
+TEST(Methods, MethodsNotBuiltYetSaySoAndDrawNothing) {
+    for (const char* name : {"pbvr-object", "pbvr-image", "splat"}) {
+        Scene scene = scene_of(grid(2));
+        scene.method = method(name);
+        Pipeline pipeline;
+        auto result = pipeline.render(scene);
+        ASSERT_FALSE(result.ok()) << name;
+        EXPECT_EQ(result.error().code, ErrorCode::kUnsupported);
+        EXPECT_NE(result.error().message.find("not implemented yet"), std::string::npos)
+            << result.error().message;
+        EXPECT_NE(result.error().message.find(name), std::string::npos);
+    }
+}
+
+TEST(Methods, ProjectedTetrahedraRejectKeysOfOtherMethodsAndNoteRepetitions) {
+    const std::shared_ptr<const TetMesh> mesh = grid(3);
+    Scene scene = scene_of(mesh);
+    MethodSpec with_depth = method("projected-tetrahedra");
+    with_depth.options["depth"] = std::string("entry");
+    scene.method = with_depth;
+    Pipeline pipeline;
+    auto rejected = pipeline.render(scene);
+    ASSERT_FALSE(rejected.ok());
+    EXPECT_NE(rejected.error().message.find("$.method.depth: unknown key for projected-tetrahedra"),
+              std::string::npos)
+        << rejected.error().message;
+    // repetitions and seed are the stochastic methods': noted, and the picture is unchanged.
+    scene.method = method("projected-tetrahedra", 64, 3);
+    auto noted = pipeline.render(scene);
+    ASSERT_TRUE(noted.ok()) << noted.error().to_string();
+    ASSERT_EQ(noted->notes.size(), 1u);
+    EXPECT_NE(noted->notes[0].find("ignore"), std::string::npos);
+    scene.method.reset();
+    auto plain = pipeline.render(scene);
+    ASSERT_TRUE(plain.ok());
+    EXPECT_TRUE(plain->notes.empty());
+    EXPECT_TRUE(identical(noted->image, plain->image));
+}
+
+TEST(Volumes, OneEntryRendersExactlyAsTheTopLevelKeys) {
+    const std::shared_ptr<const TetMesh> mesh = grid(3);
+    Scene top = scene_of(mesh);
+    Scene listed = top;
+    listed.volumes_key = true;
+    Pipeline a, b;
+    auto one = a.render(top);
+    auto other = b.render(listed);
+    ASSERT_TRUE(one.ok() && other.ok());
+    EXPECT_TRUE(identical(one->image, other->image));
+    EXPECT_GT(compare_images(one->image, Image(96, 96, Vec3f(0.05f, 0.05f, 0.1f)),
+                             Vec3f(0.05f, 0.05f, 0.1f))
+                  .foreground_pixels,
+              3000u);  // the volume covers the middle of the picture
+}
+
+TEST(Volumes, SeveralNeedFusedRenderingNotBuiltYet) {
+    Scene scene = scene_of(grid(2));
+    scene.volumes.push_back(scene.volumes[0]);
+    scene.volumes_key = true;
+    Pipeline pipeline;
+    auto result = pipeline.render(scene);
+    ASSERT_FALSE(result.ok());
+    EXPECT_EQ(result.error().code, ErrorCode::kUnsupported);
+    EXPECT_NE(result.error().message.find("several volumes"), std::string::npos);
+}
+
+// Counts wrong-way pairs of an order over `views` random views.
+std::size_t violations(Pipeline& pipeline, const SceneVolume& volume, SortMethod method,
+                       int views) {
+    std::size_t total = 0;
+    const auto mesh = pipeline.mesh(volume).value();
+    for (int v = 0; v < views; ++v) {
+        const CameraFrame frame(random_view(mesh->tets.bounds(), 100 + v, false, false), 96, 96);
+        const ViewOrder order = pipeline.visibility_order(volume, frame, method).value();
+        total += check_order(order.prepared.mesh(), order.order, frame).violations;
+    }
+    return total;
+}
+
+TEST(ExactSortPolicy, JudgedOnTheMeshActuallySorted) {
+    Pipeline pipeline;
+    // A ring of boxes: non-convex, with a hole.
+    Scene ring_scene = scene_of(grid(5, ring, 2));
+    const SceneVolume& volume = ring_scene.volumes[0];
+    const PreparedSort bare = pipeline.prepared_sort(volume, SortMethod::kMpvo).value();
+    EXPECT_FALSE(bare.sorted->real_convex);
+    EXPECT_FALSE(bare.sorted->convexified);
+    EXPECT_FALSE(bare.exact);  // MPVO on a non-convex mesh claims nothing
+    EXPECT_GT(violations(pipeline, volume, SortMethod::kMpvo, 8), 0u);  // and is wrong
+    for (SortMethod m : {SortMethod::kMpvoNonConvex, SortMethod::kCentroid}) {
+        EXPECT_FALSE(pipeline.prepared_sort(volume, m).value().exact);
+    }
+    for (SortMethod m : {SortMethod::kAuto, SortMethod::kExact}) {
+        const PreparedSort p = pipeline.prepared_sort(volume, m).value();
+#if TETRENDER_HAS_TETGEN
+        EXPECT_TRUE(p.sorted->convexified);
+        EXPECT_TRUE(p.sorted->sorted_convex);  // checked on real + virtual tets
+        EXPECT_TRUE(p.exact);
+        EXPECT_TRUE(p.note.empty());
+        EXPECT_EQ(violations(pipeline, volume, m, 8), 0u);
+#else
+        EXPECT_FALSE(p.exact);
+        EXPECT_NE(p.note.find("not exact"), std::string::npos);
+#endif
+    }
+    // A convex box: exact without any fill, and the bare and filled preparations are one.
+    Scene box_scene = scene_of(grid(3));
+    const PreparedSort box =
+        pipeline.prepared_sort(box_scene.volumes[0], SortMethod::kAuto).value();
+    EXPECT_TRUE(box.sorted->real_convex);
+    EXPECT_FALSE(box.sorted->convexified);
+    EXPECT_TRUE(box.exact);
+    EXPECT_EQ(box.sorted.get(),
+              pipeline.prepared_sort(box_scene.volumes[0], SortMethod::kMpvo).value().sorted.get());
+    // claims_exactness itself follows the sorted mesh, for every MPVO-family name.
+    for (SortMethod m : {SortMethod::kAuto, SortMethod::kExact, SortMethod::kMpvo}) {
+        EXPECT_FALSE(claims_exactness(m, false)) << sort_method_name(m);
+        EXPECT_TRUE(claims_exactness(m, true)) << sort_method_name(m);
+    }
+    EXPECT_FALSE(claims_exactness(SortMethod::kCentroid, true));
+}
+
+TEST(Pipeline, KeepsWhatItLoadedAndPreparedBetweenViews) {
+    const std::shared_ptr<const TetMesh> mesh = grid(5, ring, 2);
+    Scene scene = scene_of(mesh);
+    Pipeline pipeline;
+    auto first = pipeline.render(scene);
+    ASSERT_TRUE(first.ok()) << first.error().to_string();
+    const LoadedMesh* loaded = pipeline.mesh(scene.volumes[0]).value().get();
+    const SortedMesh* sorted =
+        pipeline.prepared_sort(scene.volumes[0], SortMethod::kAuto).value().sorted.get();
+    // An orbit: another camera, the same pipeline.
+    scene.camera = framing_camera(mesh->bounds(), Vec3(-0.3, 1.0, 0.5));
+    auto second = pipeline.render(scene);
+    ASSERT_TRUE(second.ok());
+    EXPECT_EQ(pipeline.mesh(scene.volumes[0]).value().get(), loaded);
+    EXPECT_EQ(pipeline.prepared_sort(scene.volumes[0], SortMethod::kAuto).value().sorted.get(),
+              sorted);
+    // The same picture as a pipeline that starts afresh for that view.
+    Pipeline fresh;
+    auto again = fresh.render(scene);
+    ASSERT_TRUE(again.ok());
+    EXPECT_TRUE(identical(second->image, again->image));
+    EXPECT_FALSE(identical(first->image, second->image));
+}
+
+TEST(Pipeline, ErrorsOfTheScalarNameThePoint) {
+    auto mesh = std::make_shared<TetMesh>(*grid(2));
+    std::vector<double> bad(mesh->num_points(), 0.5);
+    bad[7] = std::nan("");
+    ASSERT_TRUE(mesh->add_point_field(make_double_field("bad", 1, bad)).ok());
+    Scene scene = scene_of(mesh);
+    scene.volumes[0].scalar = "bad";
+    Pipeline pipeline;
+    auto result = pipeline.render(scene);
+    ASSERT_FALSE(result.ok());
+    EXPECT_NE(result.error().message.find("not finite at point 7"), std::string::npos);
+    scene.volumes[0].scalar = "missing";
+    result = pipeline.render(scene);
+    ASSERT_FALSE(result.ok());
+    EXPECT_NE(result.error().message.find("wave"), std::string::npos)  // lists the arrays
+        << result.error().message;
+}
+
+TEST(Pipeline, OpaqueSurfacesHandedOverOrFromTheMesh) {
+    const std::shared_ptr<const TetMesh> mesh = grid(3);
+    Scene scene = scene_of(mesh);
+    OpaqueSpec body;
+    body.color = Vec3(0.9, 0.1, 0.1);
+    body.surface = std::make_shared<const SurfaceMesh>([&] {
+        SurfaceMesh s = make_cylinder_surface(0.6, 0.5, 2.5, 24);
+        for (Vec3& p : s.points) p += Vec3(1.5, 1.5, 0.0);
+        return s;
+    }());
+    scene.opaque.push_back(body);
+    Pipeline pipeline;
+    auto with = pipeline.render(scene);
+    ASSERT_TRUE(with.ok()) << with.error().to_string();
+    Scene plain = scene_of(mesh);
+    auto without = pipeline.render(plain);
+    ASSERT_TRUE(without.ok());
+    const ImageComparison c =
+        compare_images(with->image, without->image, Vec3f(0.05f, 0.05f, 0.1f));
+    EXPECT_GT(c.max_difference, 0.1);  // the red body shows through the volume
+    OpaqueSpec side_set;
+    side_set.side_set = "wall";
+    plain.opaque.push_back(side_set);
+    auto missing = pipeline.render(plain);
+    ASSERT_FALSE(missing.ok());
+    EXPECT_NE(missing.error().message.find("no side set 'wall'"), std::string::npos);
+}
+
+TEST(Pipeline, FlowVolumeLayerByLayer) {
+    const std::shared_ptr<const TetMesh> mesh = grid(4);
+    Scene scene = scene_of(mesh, 80);
+    FlowVolumeSpec dye;
+    dye.vectors = "v";
+    dye.seed_center = Vec3(0.5, 2.0, 2.0);
+    dye.seed_width = dye.seed_height = 1.0;
+    dye.seed_resolution = 4;
+    dye.steps = 5;
+    dye.dt = 0.3;
+    scene.flow_volume = dye;
+    std::vector<std::size_t> layers;
+    RenderOptions options;
+    options.on_flow_volume_layer = [&](std::size_t layer, const Image& picture) {
+        layers.push_back(layer);
+        EXPECT_EQ(picture.width, 80);
+        return Status{};
+    };
+    Pipeline pipeline;
+    auto result = pipeline.render(scene, options);
+    ASSERT_TRUE(result.ok()) << result.error().to_string();
+    EXPECT_EQ(layers, (std::vector<std::size_t>{0, 1, 2, 3, 4}));
+    ASSERT_NE(result->flow_volume, nullptr);
+    EXPECT_EQ(result->flow_volume->layer_tets.size(), 5u);
+    EXPECT_GT(compare_images(result->image, Image(80, 80, Vec3f(0.05f, 0.05f, 0.1f)),
+                             Vec3f(0.05f, 0.05f, 0.1f))
+                  .foreground_pixels,
+              200u);
+    // The reference ray caster draws no flow volume: an error, not another picture.
+    options.reference = true;
+    EXPECT_FALSE(pipeline.render(scene, options).ok());
+}
+
+}  // namespace
+}  // namespace tr
