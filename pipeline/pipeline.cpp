@@ -66,9 +66,20 @@ std::vector<OpaqueSurface> OpaqueSet::layers() const {
     return out;
 }
 
+struct Pipeline::CachedShader {
+    TransferFunction tf;
+    Integrator integrator;
+    double max_length;
+    std::unique_ptr<SegmentShader> shader;
+};
+
 Pipeline::Pipeline(PipelineOptions options) : options_(std::move(options)) {
     if (!options_.load.progress) options_.load.progress = options_.progress;
 }
+
+Pipeline::~Pipeline() = default;
+Pipeline::Pipeline(Pipeline&&) noexcept = default;
+Pipeline& Pipeline::operator=(Pipeline&&) noexcept = default;
 
 void Pipeline::clear() {
     meshes_.clear();

@@ -83,6 +83,9 @@ struct PipelineOptions {
 class Pipeline {
   public:
     explicit Pipeline(PipelineOptions options = {});
+    ~Pipeline();
+    Pipeline(Pipeline&&) noexcept;
+    Pipeline& operator=(Pipeline&&) noexcept;
 
     // Checks what can be checked before loading anything: the method exists in this build and
     // accepts the scene's method keys and the rest of the scene. Errors name the scene file
@@ -143,12 +146,7 @@ class Pipeline {
     std::map<std::string, std::shared_ptr<const LoadedMesh>> meshes_;
     std::map<std::string, std::shared_ptr<const SortedMesh>> sorted_;
     VisibilitySorter sorter_;
-    struct CachedShader {
-        TransferFunction tf;
-        Integrator integrator;
-        double max_length;
-        std::unique_ptr<SegmentShader> shader;
-    };
+    struct CachedShader;  // the last shader made, with a copy of its transfer function
     std::unique_ptr<CachedShader> shader_;
 };
 
