@@ -22,7 +22,10 @@ struct ReadOptions {
 // Reads a mesh; the format comes from the (case-insensitive) extension:
 //   .vtu .pvtu .vts .vtr .vti .vtp  VTK XML (.vtp: a point cloud, i.e. points without cells)
 //   .vtk                            legacy VTK: unstructured, structured and rectilinear grids,
-//                                   structured points, polydata of vertices (point cloud)
+//                                   structured points, polydata of vertices (point cloud);
+//                                   versions 1.0 to 5.1, ASCII or BINARY, laid out as VTK 9.1
+//                                   reads them (blank lines, trailing blanks, '\r\n', keyword
+//                                   case); a file VTK would misread is an error
 //   .exo .e .ex2 .g .exii           Exodus II: all element blocks, all nodal and element
 //                                   variables of step `time_step`; side sets as `surfaces`
 //   .pvd                            ParaView collection: `time_step` picks the file

@@ -58,6 +58,14 @@ void check_exodus_container(const fs::path& path);
 // same grid. Throws IoError when no 3-D layout matches.
 void check_plot3d(const fs::path& xyz, const fs::path& q);
 
+// Legacy .vtk (legacy_check.cpp): reads the header as VTK 9.1's vtkDataReader does (blank
+// lines, trailing blanks, '\r\n', keyword case and prefixes, versions 1.0 .. 5.1 accepted as
+// VTK accepts them) and walks every section the way VTK's readers consume it, so that each
+// count is backed by data (numbers in ASCII files, bytes in BINARY ones) and every cell list
+// is consistent. `want_dataset` (e.g. "POLYDATA"), when not empty, must be the DATASET type.
+// Throws IoError (kParse; kUnsupported for a DATASET that is not a mesh). Cost: O(file size).
+void check_vtk_legacy(const fs::path& path, const std::string& want_dataset);
+
 // PLY: parses the header (vertex with x, y, z; face with a vertex_indices list) and walks the
 // body (ASCII: tokens per line; binary: sizes and list lengths) so that it fits the file.
 void check_ply(const fs::path& path);

@@ -1,0 +1,476 @@
+// The check of a legacy .vtk file before VTK reads it (std only). The file is read the way VTK
+// 9.1's vtkDataReader and its subclasses read it -- lines where VTK reads lines, words where it
+// reads words, numbers as operator>> takes them, keywords matched case-insensitively by prefix
+// -- and every section's data must be there: VTK trusts the counts of a file (it allocates
+// what they say, reads past a cell list whose counts run over, and only warns about ASCII data
+// that is not a number), so anything it would misread is an error here.
+
+#include <io/detail/common.h>
+#include <io/detail/legacy_stream.h>
+#include <io/detail/readers.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+namespace tr::io_detail {
+
+namespace {
+
+using namespace legacy;  // legacy_stream.h exists for this file only
+
+// The header as vtkDataReader::ReadHeader and vtkDataSetReader read it: line 1 must start with
+// '# vtk DataFile Version' (any version number or none: VTK only warns), line 2 is the title
+// (any text, possibly empty: a blank line after the version line IS the title), then words, so
+// blank lines, trailing blanks and '\r\n' do not matter: the file type (ASCII or BINARY,
+// case-insensitive, compared by prefix as VTK does), 'DATASET' and the type (same). A lone
+// '\r' does not end a line for VTK.
+struct LegacyHeader {
+    int major_version = 0;  // as VTK parses it ("%d.%d"; 0 when that fails)
+    bool binary = false;
+    std::string dataset;  // UNSTRUCTURED_GRID, STRUCTURED_POINTS, ... (canonical spelling)
+};
+
+LegacyHeader read_header(LegacyStream& in, const std::string& data, const std::string& where) {
+    if (!starts_with(data, "# vtk DataFile Version")) {
+        std::string hint;
+        std::size_t p = 0;
+        while (p < data.size() && is_space(data[p])) ++p;
+        if (p < data.size() && data[p] == '<') hint = " (it looks like an XML file)";
+        if (p > 0 && data.compare(p, 22, "# vtk DataFile Version") == 0) {
+            hint = " (blank space before it: VTK requires it at the very start)";
+        }
+        fail(ErrorCode::kParse,
+             "not a legacy VTK file: it does not start with '# vtk DataFile Version'" + hint,
+             where + ":1");
+    }
+    LegacyHeader header;
+    std::string version, title, word;
+    in.line(version);
+    int major = 0, minor = 0;
+    if (std::sscanf(version.c_str() + std::strlen("# vtk DataFile Version"), "%d.%d", &major,
+                    &minor) == 2) {
+        header.major_version = major;
+    }
+    if (!in.line(title)) {
+        const std::string hint = version.find('\r') != std::string::npos
+                                     ? " (its lines end in a lone '\\r', which VTK does not "
+                                       "take as a line end)"
+                                     : "";
+        fail(ErrorCode::kParse,
+             "truncated legacy VTK header: no title line after the version" + hint, where + ":2");
+    }
+    const auto at = [&] { return where + ":" + std::to_string(in.line_of_last_word()); };
+    if (!in.word(word)) {
+        fail(ErrorCode::kParse, "truncated legacy VTK header: no ASCII or BINARY after the title",
+             where);
+    }
+    const std::string format = lower(word);
+    header.binary = starts_with(format, "binary");
+    if (!header.binary && !starts_with(format, "ascii")) {
+        std::string hint;
+        if (title.find_first_not_of(" \t") == std::string::npos) {
+            hint =
+                " (line 2 is blank: the line after the version line is the title, even when "
+                "blank, so no blank line may come between them)";
+        }
+        fail(ErrorCode::kParse,
+             "expected ASCII or BINARY after the title line, found " + quote_word(word) + hint,
+             at());
+    }
+    const bool got_word = in.word(word);
+    if (!got_word || !starts_with(lower(word), "dataset")) {
+        fail(ErrorCode::kParse,
+             "expected 'DATASET <type>' after " + std::string(header.binary ? "BINARY" : "ASCII") +
+                 (got_word ? ", found " + quote_word(word) : ", found the end of the file"),
+             at());
+    }
+    if (!in.word(word)) {
+        fail(ErrorCode::kParse, "truncated legacy VTK header: no type after DATASET", at());
+    }
+    // vtkDataSetReader::ReadOutputType's order and prefixes.
+    static const char* const kDatasets[] = {"polydata", "structured_points", "structured_grid",
+                                            "rectilinear_grid", "unstructured_grid"};
+    const std::string type = lower(word);
+    for (const char* d : kDatasets) {
+        if (starts_with(type, d)) {
+            header.dataset = upper(d);
+            break;
+        }
+    }
+    if (header.dataset.empty()) {
+        fail(ErrorCode::kUnsupported, "legacy VTK DATASET " + quote_word(word) + " is not a mesh",
+             at());
+    }
+    return header;
+}
+
+// Grids with implicit points (structured points, rectilinear grids) are capped at 2^31 points,
+// as for VTK XML files.
+constexpr double kMaxImplicitPoints = 2147483648.0;
+
+// Walks the sections after the header, the way VTK's readers consume them.
+class LegacyBody {
+  public:
+    LegacyBody(LegacyStream& in, const LegacyHeader& header, std::string where)
+        : in_(in), header_(header), where_(std::move(where)) {}
+
+    void walk() {
+        std::string word;
+        while (in_.word(word)) {
+            const std::string kw = keyword_of(word);
+            keyword_ = kw.empty() ? word : kw;
+            if (kw == "POINTS") {
+                const std::uint64_t n = count("the point count");
+                values(times(3, n), type(), "POINTS");
+            } else if (kw == "X_COORDINATES" || kw == "Y_COORDINATES" || kw == "Z_COORDINATES") {
+                const std::uint64_t n = count("the coordinate count");
+                implicit_points_ *= static_cast<double>(n);
+                check_implicit_points();
+                values(n, type(), kw);
+            } else if (kw == "DIMENSIONS") {
+                double points = 1.0;
+                for (int a = 0; a < 3; ++a) points *= static_cast<double>(count("a dimension"));
+                if (header_.dataset == "STRUCTURED_POINTS") {
+                    implicit_points_ = points;
+                    check_implicit_points();
+                }
+            } else if (kw == "ORIGIN" || kw == "SPACING" || kw == "ASPECT_RATIO") {
+                for (int a = 0; a < 3; ++a) {
+                    if (!in_.real()) bad("three numbers");
+                }
+            } else if (kw == "CELLS" || kw == "VERTICES" || kw == "LINES" || kw == "POLYGONS" ||
+                       kw == "TRIANGLE_STRIPS") {
+                cells(kw);
+            } else if (kw == "CELL_TYPES") {
+                values(count("the cell count"), "int", "CELL_TYPES");
+            } else if (kw == "POINT_DATA" || kw == "CELL_DATA") {
+                tuples_ = count("the tuple count");
+            } else if (kw == "SCALARS") {
+                scalars();
+            } else if (kw == "VECTORS" || kw == "NORMALS" || kw == "TENSORS" || kw == "TENSORS6") {
+                const std::string name = name_word();
+                const std::uint64_t nc = kw == "TENSORS" ? 9 : kw == "TENSORS6" ? 6 : 3;
+                if (!values(times(nc, tuples_), type(), kw + " " + name)) return;
+            } else if (kw == "TEXTURE_COORDINATES") {
+                const std::string name = name_word();
+                const std::uint64_t dim = count("the dimension");
+                if (!values(times(dim, tuples_), type(), kw + " " + name)) return;
+            } else if (kw == "GLOBAL_IDS" || kw == "PEDIGREE_IDS") {
+                const std::string name = name_word();
+                if (!values(tuples_, type(), kw + " " + name)) return;
+            } else if (kw == "COLOR_SCALARS") {
+                const std::string name = name_word();
+                const std::uint64_t nc = count("the component count");
+                values(times(nc, tuples_), header_.binary ? "unsigned_char" : "float",
+                       kw + " " + name);
+            } else if (kw == "LOOKUP_TABLE") {
+                const std::string name = name_word();
+                const std::uint64_t n = count("the table size");
+                values(times(4, n), header_.binary ? "unsigned_char" : "float", kw + " " + name);
+            } else if (kw == "FIELD") {
+                if (!field()) return;
+            } else {
+                return;  // METADATA, INFORMATION, anything else: VTK judges the rest
+            }
+        }
+    }
+
+  private:
+    [[noreturn]] void bad(const std::string& expected) {
+        const std::string next = in_.peek_word();
+        fail(ErrorCode::kParse,
+             keyword_ + ": expected " + expected + ", found " +
+                 (next.empty() ? std::string("the end of the file") : quote_word(next)),
+             at());
+    }
+
+    std::string at() const {
+        return header_.binary ? where_ : where_ + ":" + std::to_string(in_.line_of_last_word());
+    }
+
+    std::uint64_t count(const char* what) {
+        std::int64_t v = 0;
+        if (!in_.integer(v) || v < 0) bad(what);
+        return static_cast<std::uint64_t>(v);
+    }
+
+    std::string name_word() {
+        std::string w;
+        if (!in_.word(w)) bad("a name");
+        return w;
+    }
+
+    std::string type() {
+        std::string w;
+        if (!in_.word(w)) bad("a data type");
+        return w;
+    }
+
+    void check_implicit_points() {
+        if (!(implicit_points_ <= kMaxImplicitPoints)) {
+            char count[32];
+            std::snprintf(count, sizeof count, "%.3g", implicit_points_);
+            fail(ErrorCode::kParse,
+                 keyword_ + ": a grid of " + count + " points is not plausible (at most 2^31)",
+                 at());
+        }
+    }
+
+    // vtkDataReader::ReadArray: `n` values of `type`. False for types that are not numbers
+    // (strings, variants, unknown): the walk stops there and VTK judges the rest.
+    bool values(std::uint64_t n, const std::string& type_name, const std::string& what) {
+        const ValueType vt = value_type(type_name);
+        if (vt.kind == ValueType::kOther) return false;
+        const std::uint64_t left = in_.left();
+        if (header_.binary) {
+            in_.end_line();
+            const std::uint64_t after = in_.left();
+            const std::uint64_t bytes =
+                vt.kind == ValueType::kBit ? n / 8 + (n % 8 != 0) : times(n, vt.size);
+            if (bytes > after) {
+                fail(ErrorCode::kParse,
+                     "truncated file: " + what + " needs " + std::to_string(bytes) + " bytes, " +
+                         std::to_string(after) + " are left",
+                     at());
+            }
+            in_.skip_bytes(bytes);
+            return true;
+        }
+        // Every ASCII value takes at least 2 bytes but the last.
+        if (n > left / 2 + 1) {
+            fail(ErrorCode::kParse,
+                 "truncated file: " + what + " declares " + std::to_string(n) + " values, " +
+                     std::to_string(left) + " bytes are left",
+                 at());
+        }
+        const bool real = vt.kind == ValueType::kReal;
+        for (std::uint64_t i = 0; i < n; ++i) {
+            std::int64_t ignored = 0;
+            if (real ? in_.real() : in_.integer(ignored, vt.max_magnitude)) continue;
+            if (in_.at_end()) {
+                fail(ErrorCode::kParse,
+                     "truncated file: " + what + " has " + std::to_string(i) + " of " +
+                         std::to_string(n) + " values",
+                     at());
+            }
+            // VTK only warns here ("Possible mismatch of datasize with declaration") and reads
+            // on from the word that is not a number.
+            fail(ErrorCode::kParse,
+                 what + ": value " + std::to_string(i + 1) + " of " + std::to_string(n) + " is " +
+                     quote_word(in_.peek_word()) + ", not " +
+                     (real ? "a number" : "an integer of type " + lower(type_name)) +
+                     " (the section has fewer values than it declares, or garbage)",
+                 at());
+        }
+        return true;
+    }
+
+    // vtkDataReader::ReadScalarData: name, type, then an optional component count (>= 1) and
+    // LOOKUP_TABLE <name> (exactly that keyword), then the values.
+    void scalars() {
+        const std::string name = name_word();
+        const std::string t = type();
+        std::string w;
+        if (!in_.word(w)) bad("LOOKUP_TABLE");
+        std::uint64_t nc = 1;
+        if (lower(w) != "lookup_table") {
+            const int c = std::atoi(w.c_str());
+            if (c < 1) {
+                fail(ErrorCode::kParse,
+                     "SCALARS " + name + ": the component count " + quote_word(w) +
+                         " is not a positive integer",
+                     at());
+            }
+            nc = static_cast<std::uint64_t>(c);
+            if (!in_.word(w)) bad("LOOKUP_TABLE");
+        }
+        if (lower(w) != "lookup_table") {
+            fail(ErrorCode::kParse,
+                 "SCALARS " + name + ": expected LOOKUP_TABLE, found " + quote_word(w), at());
+        }
+        name_word();  // the table's name
+        values(times(nc, tuples_), t, "SCALARS " + name);
+    }
+
+    // Cells: VTK 9.1 reads them as OFFSETS + CONNECTIVITY arrays from version 5.0 on, as a
+    // legacy list (count, ids, count, ...) before: by the header's version, not the content.
+    void cells(const std::string& kw) {
+        const std::uint64_t a = count("a count");
+        const std::uint64_t b = count("a size");
+        std::string w;
+        if (header_.major_version >= 5) {
+            if (!in_.word(w) || keyword_of(w) != "OFFSETS") {
+                fail(ErrorCode::kParse,
+                     kw + " in a version " + std::to_string(header_.major_version) +
+                         ".x file must be followed by OFFSETS (VTK 5's cell layout), found " +
+                         quote_word(w),
+                     at());
+            }
+            offsets(a, b, type(), kw + " OFFSETS");
+            if (!in_.word(w) || keyword_of(w) != "CONNECTIVITY") {
+                fail(ErrorCode::kParse, kw + ": expected CONNECTIVITY after OFFSETS", at());
+            }
+            values(b, type(), kw + " CONNECTIVITY");
+            return;
+        }
+        if (keyword_of(in_.peek_word()) == "OFFSETS") {
+            fail(ErrorCode::kParse,
+                 kw + " with OFFSETS (VTK 5's cell layout) in a file whose header says version " +
+                     std::to_string(header_.major_version) +
+                     ".x: VTK reads it as the older layout; the header must say 5.1",
+                 at());
+        }
+        legacy_cells(a, b, kw);
+    }
+
+    // One integer of `type_name` (BINARY: big-endian bytes; ASCII: as operator>> reads it).
+    std::int64_t integer_value(const std::string& type_name, const std::string& what) {
+        const ValueType vt = value_type(type_name);
+        if (vt.kind != ValueType::kInteger) {
+            fail(ErrorCode::kParse, what + ": bad type " + quote_word(type_name), at());
+        }
+        if (header_.binary) {
+            if (vt.size > in_.left()) fail(ErrorCode::kParse, "truncated file: " + what, at());
+            std::uint64_t v = 0;
+            for (std::uint64_t i = 0; i < vt.size; ++i) v = (v << 8) | in_.byte(i);
+            in_.skip_bytes(vt.size);
+            const std::string t = lower(type_name);
+            const bool is_unsigned = starts_with(t, "unsigned") || starts_with(t, "vtktypeuint");
+            if (vt.size < 8 && !is_unsigned && (v >> (8 * vt.size - 1)) != 0) {
+                v |= ~std::uint64_t(0) << (8 * vt.size);  // sign-extend
+            }
+            return static_cast<std::int64_t>(v);
+        }
+        std::int64_t v = 0;
+        if (!in_.integer(v, std::min(vt.max_magnitude, ~std::uint64_t(0) >> 1))) {
+            if (in_.at_end()) fail(ErrorCode::kParse, "truncated file: " + what, at());
+            fail(ErrorCode::kParse,
+                 what + ": " + quote_word(in_.peek_word()) + " is not an integer", at());
+        }
+        return v;
+    }
+
+    // A cell list before VTK 5, walked the way vtkCellArray::AppendLegacyFormat walks it (it
+    // reads past the list, and crashes, on a count that runs over).
+    void legacy_cells(std::uint64_t num_cells, std::uint64_t size, const std::string& what) {
+        if (header_.binary) {
+            in_.end_line();
+            if (size > in_.left() / 4) {
+                fail(ErrorCode::kParse,
+                     "truncated file: " + what + " needs " + std::to_string(4 * size) + " bytes, " +
+                         std::to_string(in_.left()) + " are left",
+                     at());
+            }
+        } else if (size > in_.left() / 2 + 1) {
+            fail(ErrorCode::kParse,
+                 "truncated file: " + what + " declares " + std::to_string(size) + " values, " +
+                     std::to_string(in_.left()) + " bytes are left",
+                 at());
+        }
+        std::uint64_t k = 0, cells = 0;
+        while (k < size) {
+            const std::int64_t n = integer_value("int", what);
+            ++k;
+            if (n < 0 || static_cast<std::uint64_t>(n) > size - k) {
+                fail(ErrorCode::kParse,
+                     what + ": cell " + std::to_string(cells) + " has " + std::to_string(n) +
+                         " points, but its list has " + std::to_string(size - k) + " entries left",
+                     at());
+            }
+            for (std::int64_t i = 0; i < n; ++i) integer_value("int", what);
+            k += static_cast<std::uint64_t>(n);
+            ++cells;
+        }
+        if (cells != num_cells) {
+            fail(ErrorCode::kParse,
+                 what + " declares " + std::to_string(num_cells) + " cells, its list holds " +
+                     std::to_string(cells),
+                 at());
+        }
+    }
+
+    // VTK 5's OFFSETS: `n` values from 0, never decreasing, ending at `connectivity_size`.
+    void offsets(std::uint64_t n, std::uint64_t connectivity_size, const std::string& type_name,
+                 const std::string& what) {
+        const ValueType vt = value_type(type_name);
+        if (vt.kind != ValueType::kInteger) {
+            fail(ErrorCode::kParse, what + ": bad type " + quote_word(type_name), at());
+        }
+        const std::uint64_t size = vt.size;
+        if (header_.binary) {
+            in_.end_line();
+            if (n > in_.left() / size) {
+                fail(ErrorCode::kParse,
+                     "truncated file: " + what + " needs " + std::to_string(n * size) + " bytes, " +
+                         std::to_string(in_.left()) + " are left",
+                     at());
+            }
+        }
+        std::int64_t previous = 0;
+        for (std::uint64_t i = 0; i < n; ++i) {
+            const std::int64_t v = integer_value(type_name, what);
+            const bool last = i + 1 == n;
+            if ((i == 0 && v != 0) || v < previous ||
+                (last && static_cast<std::uint64_t>(v) != connectivity_size)) {
+                fail(ErrorCode::kParse,
+                     what + " " + std::to_string(i) + " is " + std::to_string(v) +
+                         ": offsets must start at 0, never decrease and end at the " +
+                         std::to_string(connectivity_size) + " connectivity entries",
+                     at());
+            }
+            previous = v;
+        }
+    }
+
+    // vtkDataReader::ReadFieldData: name, array count, then per array its name (or
+    // NULL_ARRAY), components, tuples, type and values. False when the walk must stop (an
+    // array of strings, per-array METADATA): VTK judges the rest.
+    bool field() {
+        name_word();
+        const std::uint64_t arrays = count("the array count");
+        for (std::uint64_t i = 0; i < arrays; ++i) {
+            std::string name;
+            if (!in_.word(name)) bad("a FIELD array");
+            if (name == "NULL_ARRAY") continue;
+            if (keyword_of(name) == "METADATA") return false;
+            const std::uint64_t nc = count("the component count");
+            const std::uint64_t nt = count("the tuple count");
+            if (nc != 0 && nt > in_.left() / nc + 1) {
+                fail(ErrorCode::kParse,
+                     "truncated file: FIELD array " + name + " declares " + std::to_string(nc) +
+                         " x " + std::to_string(nt) + " values, " + std::to_string(in_.left()) +
+                         " bytes are left",
+                     at());
+            }
+            if (!values(times(nc, nt), type(), "FIELD array " + name)) return false;
+        }
+        return true;
+    }
+
+    LegacyStream& in_;
+    const LegacyHeader& header_;
+    std::string where_;
+    std::string keyword_;           // of the section being read, for messages
+    std::uint64_t tuples_ = 0;      // of the current POINT_DATA / CELL_DATA section
+    double implicit_points_ = 1.0;  // product of the coordinate counts so far
+};
+
+}  // namespace
+
+void check_vtk_legacy(const fs::path& path, const std::string& want_dataset) {
+    const std::string where = path.string();
+    check_readable_file(path);
+    const std::string data = read_all(path);
+    LegacyStream in(data);
+    const LegacyHeader header = read_header(in, data, where);
+    if (!want_dataset.empty() && header.dataset != want_dataset) {
+        fail(ErrorCode::kParse, "legacy VTK " + header.dataset + " is not " + want_dataset, where);
+    }
+    LegacyBody body(in, header, where);
+    body.walk();
+}
+
+}  // namespace tr::io_detail
