@@ -1,5 +1,6 @@
 // Bad input for io/: every case must come back as an Error with a one-line message (no crash,
-// no exception, no leak; these also run under ASan/UBSan).
+// no exception, no leak; these also run under ASan/UBSan). Cases cut from the shared data:
+// io_badinput_realdata_test.cpp.
 
 #include <io/read_mesh.h>
 #include <io/read_surface.h>
@@ -11,27 +12,17 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <stdexcept>
+#include <tuple>
 
 namespace tr {
 namespace {
 
 namespace fs = std::filesystem;
 
+using test::expect_error;
 using test::TempDir;
 using test::write_file;
-
-// Checks the error shape and returns the message (for further checks).
-template <class T>
-std::string expect_error(const Result<T>& result, const fs::path& path) {
-    EXPECT_FALSE(result.ok());
-    if (result.ok()) return {};
-    const Error& e = result.error();
-    EXPECT_TRUE(test::one_line(e.message)) << "[" << e.message << "]";
-    EXPECT_TRUE(test::one_line(e.to_string())) << "[" << e.to_string() << "]";
-    EXPECT_NE(e.where.find(path.filename().string()), std::string::npos)
-        << "where '" << e.where << "' should name " << path;
-    return e.message;
-}
 
 std::string random_bytes(std::size_t n, unsigned seed) {
     std::mt19937 rng(seed);
@@ -120,24 +111,6 @@ TEST(BadInput, TruncatedLegacyAscii) {
     expect_error(read_mesh(path), path);
 }
 
-TEST(BadInput, TruncatedExodus) {
-    const fs::path data = test::shared_data_dir();
-    if (data.empty()) GTEST_SKIP() << "shared data folder absent: " << TETRENDER_SHARED_DATA_DIR;
-    TempDir dir;
-    for (const char* name : {"disk_out_ref/disk_out_ref.ex2", "wedge_blocks/mesh_fs8.exo"}) {
-        SCOPED_TRACE(name);
-        const std::string bytes = test::read_file(data / name);
-        ASSERT_FALSE(bytes.empty());
-        for (std::size_t keep : {bytes.size() / 2, std::size_t(200), bytes.size() - 100}) {
-            SCOPED_TRACE(keep);
-            const fs::path path =
-                dir / ("cut" + std::to_string(keep) + fs::path(name).extension().string());
-            write_file(path, bytes.substr(0, keep));
-            expect_error(read_mesh(path), path);
-        }
-    }
-}
-
 TEST(BadInput, RandomBytesEveryExtension) {
     TempDir dir;
     unsigned seed = 1;
@@ -214,6 +187,76 @@ TEST(BadInput, ValidHeaderThenGarbage) {
         SCOPED_TRACE(name);
         write_file(dir / name, text);
         expect_error(read_mesh(dir / name), dir / name);
+    }
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+    const std::size_t at = text.find(from);
+    if (at == std::string::npos) throw std::logic_error("test setup: no '" + from + "'");
+    return text.replace(at, from.size(), to);
+}
+
+// Legacy bodies that VTK 9.1 crashes on or misreads silently (checked with python3-vtk9 on the
+// same bytes: a cell count running over its list crashes or corrupts the heap, "CELLSX" is
+// CELLS to VTK, ASCII data short of its count is only a warning, OFFSETS under a 4.2 header are
+// read as the old layout): each is a one-line error that names the problem.
+TEST(BadInput, LegacyBodyCorruptions) {
+    test::LegacyLayout ascii;
+    test::LegacyLayout binary;
+    binary.header = "# vtk DataFile Version 3.0\ntest\nBINARY\n";
+    binary.binary = true;
+    test::LegacyLayout v51 = ascii;
+    v51.header = "# vtk DataFile Version 5.1\ntest\nASCII\n";
+    v51.offsets_cells = true;
+    test::LegacyLayout new_cells_old_version = v51;
+    new_cells_old_version.header = "# vtk DataFile Version 4.2\ntest\nASCII\n";
+    test::LegacyLayout old_cells_new_version = ascii;
+    old_cells_new_version.header = v51.header;
+    const std::string cells = test::legacy_unstructured(ascii);
+    std::string binary_cells = test::legacy_unstructured(binary);
+    const std::size_t list = binary_cells.find("CELLS 4 27\n") + 11;
+    binary_cells.replace(list, 4, std::string("\0\0\x03\xe8", 4));  // first count: 1000
+    std::string rectilinear =
+        "# vtk DataFile Version 3.0\nr\nASCII\nDATASET RECTILINEAR_GRID\n"
+        "DIMENSIONS 2000 2000 2000\n";
+    for (const char* axis : {"X", "Y", "Z"}) {
+        rectilinear += std::string(axis) + "_COORDINATES 2000 float\n";
+        for (int i = 0; i < 2000; ++i) rectilinear += "0 ";
+        rectilinear += "\n";
+    }
+    const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+        {"count_runs_over", replaced(cells, "\n8 0 1 2 3 4 5 6 7 ", "\n100000 0 1 2 3 4 5 6 7 "),
+         "cell 0 has 100000 points, but its list has 26 entries left"},
+        {"binary_count_runs_over", binary_cells,
+         "cell 0 has 1000 points, but its list has 26 entries left"},
+        {"fewer_cells_than_declared", replaced(cells, "CELLS 4 27", "CELLS 5 27"),
+         "CELLS declares 5 cells, its list holds 4"},
+        {"keyword_by_prefix",
+         replaced(replaced(cells, "CELLS 4 27", "CELLSX 4 27"), "\n8 0 1", "\n9 0 1"),
+         "CELLS: cell 3 has 10 points"},
+        {"missing_point_value", replaced(cells, "-1 0 -1 0\n", "-1 0 -1\n"),
+         "POINTS: value 36 of 36 is 'CELLS', not a number"},
+        {"non_integer_cell", replaced(cells, "\n8 0 1", "\n8 0.5 1"), "not an integer"},
+        {"new_cell_layout_old_version", test::legacy_unstructured(new_cells_old_version),
+         "the header must say 5.1"},
+        {"old_cell_layout_new_version", test::legacy_unstructured(old_cells_new_version),
+         "must be followed by OFFSETS"},
+        {"offsets_decrease",
+         replaced(test::legacy_unstructured(v51), "\n0 8 14 19 23", "\n0 8 4 19 23"),
+         "offsets must start at 0, never decrease"},
+        {"huge_structured_points",
+         replaced(test::legacy_points_grid(ascii), "DIMENSIONS 3 2 2",
+                  "DIMENSIONS 100000 100000 100000"),
+         "a grid of 1e+15 points is not plausible"},
+        {"huge_rectilinear_grid", rectilinear, "a grid of 8e+09 points is not plausible"},
+    };
+    TempDir dir;
+    for (const auto& [name, bytes, message_part] : cases) {
+        SCOPED_TRACE(name);
+        const fs::path path = dir / (name + ".vtk");
+        write_file(path, bytes);
+        const std::string message = expect_error(read_mesh(path), path);
+        EXPECT_NE(message.find(message_part), std::string::npos) << message;
     }
 }
 
@@ -418,14 +461,7 @@ TEST(BadInput, TimeStepOutOfRange) {
     auto single = read_mesh(dir / "a.vtu", options);
     expect_error(single, dir / "a.vtu");
     EXPECT_EQ(single.error().code, ErrorCode::kInvalidArgument);
-
-    const fs::path data = test::shared_data_dir();
-    if (data.empty()) return;
-    const fs::path exo = data / "disk_out_ref" / "disk_out_ref.ex2";
-    options.time_step = 1;
-    auto e = read_mesh(exo, options);
-    expect_error(e, exo);
-    EXPECT_EQ(e.error().code, ErrorCode::kInvalidArgument);
+    // An Exodus file's steps: io_badinput_realdata_test.cpp.
 }
 
 TEST(BadInput, TetgenEleWithoutNode) {

@@ -1,5 +1,6 @@
 // Reads every data set of /work/shared/data (README's "Which file to open" table, the PLOT3D
-// originals and the MFEM .mesh originals) and checks counts and arrays against each SOURCE.md.
+// originals, the MFEM .mesh originals and the legacy structured points) and checks counts and
+// arrays against each SOURCE.md.
 // Skipped when the folder is absent, except in CI (CI=true), where that is a failure.
 
 #include <io/read_mesh.h>
@@ -7,25 +8,14 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
-#include <cstdlib>
 #include <map>
 
 namespace tr {
 namespace {
 
 namespace fs = std::filesystem;
-
-#define REQUIRE_SHARED_DATA()                                                                \
-    do {                                                                                     \
-        if (test::shared_data_dir().empty()) {                                               \
-            const char* ci = std::getenv("CI");                                              \
-            if (ci != nullptr && std::string(ci) == "true") {                                \
-                FAIL() << "shared data folder missing in CI: " << TETRENDER_SHARED_DATA_DIR; \
-            }                                                                                \
-            GTEST_SKIP() << "shared data folder absent: " << TETRENDER_SHARED_DATA_DIR;      \
-        }                                                                                    \
-    } while (false)
 
 struct ArraySpec {
     std::string name;
@@ -67,7 +57,7 @@ void check_arrays(const std::vector<Field>& fields, const std::vector<ArraySpec>
 class RealData : public ::testing::TestWithParam<DataSpec> {};
 
 TEST_P(RealData, CountsAndArraysMatchSource) {
-    REQUIRE_SHARED_DATA();
+    TR_REQUIRE_SHARED_DATA();
     const DataSpec& spec = GetParam();
     const fs::path path = test::shared_data_dir() / spec.file;
     auto mesh = read_mesh(path);
@@ -83,6 +73,14 @@ TEST_P(RealData, CountsAndArraysMatchSource) {
 }
 
 using CT = CellType;
+
+std::string spec_name(const ::testing::TestParamInfo<DataSpec>& info) {
+    std::string name = info.param.file;
+    for (char& ch : name) {
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+    }
+    return name;
+}
 
 const std::vector<ArraySpec> kPlot3dArrays = {{"Density", 1, true},
                                               {"Momentum", 3, true},
@@ -275,17 +273,30 @@ INSTANTIATE_TEST_SUITE_P(
                                {},
                                {{"attribute", 1, false, 1, 1}},
                                "MFEM mesh v1.0"}),
-    [](const ::testing::TestParamInfo<DataSpec>& info) {
-        std::string name = info.param.file;
-        for (char& ch : name) {
-            if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-        }
-        return name;
-    });
+    spec_name);
+
+// Regular lattices in legacy binary .vtk (iron_protein: a VTK 1.0 header with blank lines).
+INSTANTIATE_TEST_SUITE_P(StructuredPoints, RealData,
+                         ::testing::Values(DataSpec{"iron_protein/ironProt.vtk",
+                                                    314432,
+                                                    300763,
+                                                    {{CT::kHexahedron, 300763}},
+                                                    {{"scalars", 1, false, 0, 255}},
+                                                    {},
+                                                    "VTK legacy structured points"},
+                                           DataSpec{"carotid/carotid.vtk",
+                                                    167580,
+                                                    158400,
+                                                    {{CT::kHexahedron, 158400}},
+                                                    {{"scalars", 1, true, 0, 580},
+                                                     {"vectors", 3, true, -11.5634, 16.6176}},
+                                                    {},
+                                                    "VTK legacy structured points"}),
+                         spec_name);
 
 // PLOT3D read directly gives the same grid as the converted .vtu next to it (same point order).
 TEST(RealDataPlot3d, SameGridAsConvertedVtu) {
-    REQUIRE_SHARED_DATA();
+    TR_REQUIRE_SHARED_DATA();
     const fs::path data = test::shared_data_dir();
     for (const auto& [xyz, vtu] : std::vector<std::pair<std::string, std::string>>{
              {"bluntfin/bluntfinxyz.bin", "bluntfin/bluntfin.vtu"},
@@ -321,7 +332,7 @@ TEST(RealDataPlot3d, SameGridAsConvertedVtu) {
 
 // The MFEM originals give the same cells as the converted .vtu files, and positive volumes.
 TEST(RealDataMfem, SameCellsAsConvertedVtu) {
-    REQUIRE_SHARED_DATA();
+    TR_REQUIRE_SHARED_DATA();
     const fs::path data = test::shared_data_dir();
     for (const auto& [mesh_file, vtu, volume] :
          std::vector<std::tuple<std::string, std::string, double>>{
@@ -347,7 +358,7 @@ TEST(RealDataMfem, SameCellsAsConvertedVtu) {
 }
 
 TEST(RealDataExodus, TimeStepsAndSideSets) {
-    REQUIRE_SHARED_DATA();
+    TR_REQUIRE_SHARED_DATA();
     const fs::path data = test::shared_data_dir();
     auto disk = read_mesh(data / "disk_out_ref" / "disk_out_ref.ex2");
     ASSERT_TRUE(disk.ok()) << disk.error().to_string();
@@ -382,7 +393,7 @@ TEST(RealDataExodus, TimeStepsAndSideSets) {
 }
 
 TEST(RealDataVolume, StructuredOfficeVolume) {
-    REQUIRE_SHARED_DATA();
+    TR_REQUIRE_SHARED_DATA();
     auto office = read_mesh(test::shared_data_dir() / "office" / "office.binary.vtk");
     ASSERT_TRUE(office.ok()) << office.error().to_string();
     EXPECT_NEAR(test::total_abs_volume(*office), 50.1986, 1e-3);
@@ -390,6 +401,113 @@ TEST(RealDataVolume, StructuredOfficeVolume) {
     const std::vector<std::int64_t> first(office->connectivity.begin(),
                                           office->connectivity.begin() + 8);
     EXPECT_EQ(first, (std::vector<std::int64_t>{0, 1, 22, 21, 420, 421, 442, 441}));
+}
+
+// A regular lattice read as hexahedra: point i + ni (j + nj k) at origin + spacing * (i, j, k),
+// (ni - 1)(nj - 1)(nk - 1) cells of volume sx sy sz, cell 0 on points 0, 1, ni + 1, ni, ...
+void expect_lattice(const UnstructuredMesh& m, const std::array<std::int64_t, 3>& dims,
+                    const Vec3& origin, const Vec3& spacing) {
+    const auto [ni, nj, nk] = dims;
+    ASSERT_EQ(m.num_points(), static_cast<std::size_t>(ni * nj * nk));
+    std::size_t off_lattice = 0;
+    for (std::int64_t k = 0; k < nk; ++k) {
+        for (std::int64_t j = 0; j < nj; ++j) {
+            for (std::int64_t i = 0; i < ni; ++i) {
+                const Vec3 want = origin + spacing * Vec3(i, j, k);
+                off_lattice += m.points[static_cast<std::size_t>(i + ni * (j + nj * k))] != want;
+            }
+        }
+    }
+    EXPECT_EQ(off_lattice, 0u);
+    Vec3 lo = m.points[0], hi = m.points[0];
+    for (const Vec3& p : m.points) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    EXPECT_EQ(lo, origin);
+    EXPECT_EQ(hi, origin + spacing * Vec3(ni - 1, nj - 1, nk - 1));
+    const std::int64_t cells = (ni - 1) * (nj - 1) * (nk - 1);
+    ASSERT_EQ(m.num_cells(), static_cast<std::size_t>(cells));
+    const std::int64_t nij = ni * nj;
+    const std::vector<std::int64_t> first(m.connectivity.begin(), m.connectivity.begin() + 8);
+    EXPECT_EQ(first,
+              (std::vector<std::int64_t>{0, 1, ni + 1, ni, nij, nij + 1, nij + ni + 1, nij + ni}));
+    EXPECT_NEAR(test::total_abs_volume(m),
+                static_cast<double>(cells) * spacing.x * spacing.y * spacing.z, 1e-6 * cells);
+}
+
+double field_sum(const Field& f, int component) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < f.num_tuples(); ++i) sum += f.get(i, component);
+    return sum;
+}
+
+// iron_protein/SOURCE.md: 68 x 68 x 68, spacing 1 (written as ASPECT_RATIO), origin 0, VTK 1.0
+// binary with blank lines in its header; `scalars` unsigned char 0 .. 255, no other array.
+TEST(RealDataStructuredPoints, IronProtein) {
+    TR_REQUIRE_SHARED_DATA();
+    auto m = read_mesh(test::shared_data_dir() / "iron_protein" / "ironProt.vtk");
+    ASSERT_TRUE(m.ok()) << m.error().to_string();
+    EXPECT_EQ(m->format, "VTK legacy structured points");
+    expect_lattice(*m, {68, 68, 68}, Vec3(0, 0, 0), Vec3(1, 1, 1));
+    ASSERT_EQ(m->point_fields.size(), 1u);
+    EXPECT_TRUE(m->cell_fields.empty());
+    const Field& s = m->point_fields[0];
+    EXPECT_EQ(s.name, "scalars");
+    EXPECT_EQ(s.num_components, 1);
+    EXPECT_EQ(field_range(s, 0), std::make_pair(0.0, 255.0));
+    // Beyond SOURCE.md, measured with VTK 9.1's vtkDataSetReader (python3-vtk9) on the same
+    // file: every byte lands where VTK puts it.
+    EXPECT_EQ(field_sum(s, 0), 4131089.0);
+    EXPECT_EQ(s.get(34 + 68 * (34 + 68 * 34)), 131.0);  // the lattice centre
+    std::size_t zeros = 0;
+    for (std::size_t i = 0; i < s.num_tuples(); ++i) zeros += s.get(i) == 0.0;
+    EXPECT_EQ(zeros, 207733u);
+}
+
+// carotid/SOURCE.md: 76 x 49 x 45, spacing 1, origin (100, 80, 1), VTK 3.0 binary; `scalars`
+// float 0 .. 580, `vectors` float with components -11.56 .. 16.62, -22.63 .. 15.61,
+// -17.47 .. 9.76 and magnitude 0 .. 22.69; no cell data.
+TEST(RealDataStructuredPoints, CarotidWithVectors) {
+    TR_REQUIRE_SHARED_DATA();
+    auto m = read_mesh(test::shared_data_dir() / "carotid" / "carotid.vtk");
+    ASSERT_TRUE(m.ok()) << m.error().to_string();
+    EXPECT_EQ(m->format, "VTK legacy structured points");
+    expect_lattice(*m, {76, 49, 45}, Vec3(100, 80, 1), Vec3(1, 1, 1));
+    ASSERT_EQ(m->point_fields.size(), 2u);
+    EXPECT_TRUE(m->cell_fields.empty());
+    const Field* s = find_field(m->point_fields, "scalars");
+    const Field* v = find_field(m->point_fields, "vectors");
+    ASSERT_NE(s, nullptr);
+    ASSERT_NE(v, nullptr);
+    EXPECT_FALSE(s->is_double());
+    EXPECT_FALSE(v->is_double());
+    ASSERT_EQ(s->num_components, 1);
+    ASSERT_EQ(v->num_components, 3);
+    EXPECT_EQ(field_range(*s, 0), std::make_pair(0.0, 580.0));
+    // Exact float ranges from VTK 9.1 (SOURCE.md rounds them to 0.01).
+    const double want[3][2] = {{-11.563380241394043, 16.617647171020508},
+                               {-22.628570556640625, 15.613636016845703},
+                               {-17.465517044067383, 9.759259223937988}};
+    for (int c = 0; c < 3; ++c) {
+        const auto [lo, hi] = field_range(*v, c);
+        EXPECT_EQ(lo, want[c][0]) << "component " << c;
+        EXPECT_EQ(hi, want[c][1]) << "component " << c;
+    }
+    double min_mag = 1e300, max_mag = 0.0;
+    for (std::size_t i = 0; i < v->num_tuples(); ++i) {
+        const double mag = std::sqrt(v->get(i, 0) * v->get(i, 0) + v->get(i, 1) * v->get(i, 1) +
+                                     v->get(i, 2) * v->get(i, 2));
+        min_mag = std::min(min_mag, mag);
+        max_mag = std::max(max_mag, mag);
+    }
+    EXPECT_EQ(min_mag, 0.0);
+    EXPECT_NEAR(max_mag, 22.694927991153424, 1e-9);  // VTK 9.1: 22.694927991153424
+    // Measured with VTK 9.1 on the same file: the fastest point, (143, 102, 28), and sums.
+    EXPECT_EQ(m->points[102263], Vec3(143, 102, 28));
+    EXPECT_EQ(v->get(102263, 1), -22.628570556640625);
+    EXPECT_EQ(field_sum(*s, 0), 16598647.0);
+    EXPECT_NEAR(field_sum(*v, 0), -1112.633641921065, 1e-6);
 }
 
 }  // namespace

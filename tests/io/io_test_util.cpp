@@ -3,8 +3,10 @@
 #include <glm/glm.hpp>
 
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <random>
@@ -180,6 +182,113 @@ std::string legacy_binary(const UnstructuredMesh& mesh) {
     return out;
 }
 
+namespace {
+
+// Writes the body of a legacy file in `layout`'s style.
+class LegacyBody {
+  public:
+    explicit LegacyBody(const LegacyLayout& layout) : layout_(layout), out_(layout.header) {}
+
+    // A keyword line: words joined by spaces, keyword lower-cased when asked.
+    void line(std::string keyword, const std::string& rest) {
+        if (layout_.lower_keywords) {
+            for (char& ch : keyword) ch = static_cast<char>(std::tolower(ch));
+        }
+        out_ += keyword + (rest.empty() ? "" : " " + rest) + layout_.eol;
+    }
+    // A data block of floats or ints.
+    template <class T>
+    void values(const std::vector<T>& v) {
+        if (layout_.binary) {
+            for (T x : v) put_be(out_, x);
+        } else {
+            std::ostringstream s;
+            s.precision(9);
+            for (std::size_t i = 0; i < v.size(); ++i) s << (i ? " " : "") << as_text(v[i]);
+            out_ += s.str();
+        }
+        out_ += layout_.eol + layout_.gap;
+    }
+    void gap() { out_ += layout_.gap; }
+    std::string str() const { return out_; }
+
+  private:
+    static double as_text(float x) { return x; }
+    static std::int64_t as_text(std::int32_t x) { return x; }
+    static std::int64_t as_text(std::int64_t x) { return x; }
+    const LegacyLayout& layout_;
+    std::string out_;
+};
+
+}  // namespace
+
+std::string legacy_points_grid(const LegacyLayout& layout) {
+    LegacyBody b(layout);
+    b.line("DATASET", layout.lower_keywords ? "structured_points" : "STRUCTURED_POINTS");
+    b.gap();
+    b.line("DIMENSIONS", "3 2 2");
+    b.line(layout.aspect_ratio ? "ASPECT_RATIO" : "SPACING", "0.5 1 2");
+    b.line("ORIGIN", "1 2 3");
+    b.gap();
+    b.line("POINT_DATA", "12");
+    b.line("SCALARS", "temp float 1");
+    b.line("LOOKUP_TABLE", "default");
+    std::vector<float> temp, vel;
+    for (int i = 0; i < 12; ++i) temp.push_back(1.5f * static_cast<float>(i));
+    for (int k = 0; k < 36; ++k) vel.push_back(static_cast<float>(k));
+    b.values(temp);
+    b.line("VECTORS", "vel float");
+    b.values(vel);
+    b.line("CELL_DATA", "2");
+    b.line("SCALARS", "cell_id int 1");
+    b.line("LOOKUP_TABLE", "default");
+    b.values(std::vector<std::int32_t>{10, 20});
+    return b.str();
+}
+
+std::string legacy_unstructured(const LegacyLayout& layout) {
+    const UnstructuredMesh mesh = mixed_mesh();
+    LegacyBody b(layout);
+    b.line("DATASET", layout.lower_keywords ? "unstructured_grid" : "UNSTRUCTURED_GRID");
+    b.gap();
+    b.line("POINTS", std::to_string(mesh.points.size()) + " float");
+    std::vector<float> xyz;
+    for (const Vec3& p : mesh.points) {
+        for (int a = 0; a < 3; ++a) xyz.push_back(static_cast<float>(p[a]));
+    }
+    b.values(xyz);
+    const std::size_t n = mesh.types.size();
+    std::vector<std::int32_t> cells, types;
+    for (std::size_t c = 0; c < n; ++c) {
+        cells.push_back(static_cast<std::int32_t>(mesh.offsets[c + 1] - mesh.offsets[c]));
+        for (auto k = mesh.offsets[c]; k < mesh.offsets[c + 1]; ++k) {
+            cells.push_back(
+                static_cast<std::int32_t>(mesh.connectivity[static_cast<std::size_t>(k)]));
+        }
+        types.push_back(static_cast<std::int32_t>(mesh.types[c]));
+    }
+    if (layout.offsets_cells) {
+        b.line("CELLS", std::to_string(n + 1) + " " + std::to_string(mesh.connectivity.size()));
+        b.line("OFFSETS", "vtktypeint64");
+        b.values(mesh.offsets);
+        b.line("CONNECTIVITY", "vtktypeint64");
+        b.values(mesh.connectivity);
+    } else {
+        b.line("CELLS", std::to_string(n) + " " + std::to_string(n + mesh.connectivity.size()));
+        b.values(cells);
+    }
+    b.line("CELL_TYPES", std::to_string(n));
+    b.values(types);
+    b.line("POINT_DATA", std::to_string(mesh.points.size()));
+    b.line("SCALARS", "temp float 1");
+    b.line("LOOKUP_TABLE", "default");
+    std::vector<float> temp;
+    for (std::size_t i = 0; i < mesh.points.size(); ++i)
+        temp.push_back(1.5f * static_cast<float>(i));
+    b.values(temp);
+    return b.str();
+}
+
 double cell_volume(const UnstructuredMesh& mesh, std::size_t cell) {
     using Faces = std::vector<std::vector<int>>;
     static const Faces kTet = {{0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {0, 2, 1}};
@@ -231,6 +340,16 @@ fs::path shared_data_dir() {
     const fs::path dir = TETRENDER_SHARED_DATA_DIR;
     std::error_code ec;
     return fs::is_directory(dir, ec) ? dir : fs::path();
+}
+
+bool require_shared_data() {
+    if (!shared_data_dir().empty()) return true;
+    const char* ci = std::getenv("CI");
+    if (ci != nullptr && std::string(ci) == "true") {
+        ADD_FAILURE() << "CI=true but the shared data folder is missing: "
+                      << TETRENDER_SHARED_DATA_DIR;
+    }
+    return false;
 }
 
 }  // namespace tr::test
