@@ -1,330 +1,31 @@
-#include <core/parallel.h>
+// Projected tetrahedra with OpenGL 3.3 core: the GL half of a frame (buffers, textures,
+// framebuffers, draws); the CPU half is detail/cell_stream.cpp, the GLSL is in shaders/.
+#include <project/gl/detail/cell_stream.h>
+#include <project/gl/detail/gl_program.h>
 #include <project/gl/gl_renderer.h>
-#include <project/tet_projection.h>
 
 #include <epoxy/gl.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstring>
-#include <limits>
+#include <cstdint>
 
 namespace tr::gl {
 namespace {
 
+using detail::CellStream;
+using detail::ExactCell;
+using detail::kFloatsPerVertex;
+using detail::kIndicesPerCell;
+using detail::kVerticesPerCell;
+
 constexpr int kTfSize = 4096;          // texels of the 1D colour + extinction table
-constexpr int kFloatsPerVertex = 6;    // x, y (pixels), thickness, s_front, s_back, t_front
-constexpr int kVerticesPerCell = 5;    // the thick vertex, then the hull (4th repeated if 3)
-constexpr int kIndicesPerCell = 12;    // four triangles around the thick vertex
 constexpr float kNoSurface = 3.0e38f;  // ray parameter where no opaque surface is
-// A perspective corner projected farther than this many times (width + height) pixels from the
-// image centre sends its cell to the exact path: seen from the eye, it lies within about 1-3
-// degrees of the eye's plane (90-30 degree views), where single-precision screen positions and
-// attributes of the projected triangles stop being trustworthy.
-constexpr double kExactGuard = 16.0;
-
-const char* kVolumeVs = R"(#version 330 core
-layout(location = 0) in vec2 a_pos;
-layout(location = 1) in vec4 a_attr;
-uniform vec2 u_size;
-uniform float u_depth_scale;
-noperspective out float v_u;
-noperspective out float v_sf;
-noperspective out float v_sb;
-noperspective out float v_tf;
-void main() {
-    vec2 ndc = vec2(2.0 * a_pos.x / u_size.x - 1.0, 1.0 - 2.0 * a_pos.y / u_size.y);
-    float z = clamp(a_attr.w * u_depth_scale, 0.0, 1.0) * 2.0 - 1.0;
-    gl_Position = vec4(ndc, z, 1.0);
-    v_u = a_attr.x;
-    v_sf = a_attr.y;
-    v_sb = a_attr.z;
-    v_tf = a_attr.w;
-}
-)";
-
-// Colour and opacity of one segment (front scalar, back scalar, length): the integrators'
-// lookups, shared by the projected and the exact cells' fragment shaders.
-const char* kShadeGlsl = R"(
-uniform int u_mode;  // 0: exp texture, 1: pre-integrated
-uniform sampler1D u_tf;  // rgb: colour, a: extinction, over [u_s_lo, u_s_hi]
-uniform sampler2D u_exp;
-uniform sampler3D u_pre;
-uniform sampler2D u_opaque_t;
-uniform float u_s_lo;
-uniform float u_s_hi;
-uniform float u_max_len;
-uniform float u_kappa_max;
-uniform float u_exp_size;
-uniform float u_pre_scalars;
-uniform float u_pre_lengths;
-uniform float u_tf_size;
-out vec4 o_color;
-// Texture coordinate of grid index x (texel centres on the grid) in a table of n texels.
-float grid(float x, float n) { return (clamp(x, 0.0, n - 1.0) + 0.5) / n; }
-vec4 tf(float s) {
-    return texture(u_tf, grid((s - u_s_lo) / (u_s_hi - u_s_lo) * (u_tf_size - 1.0), u_tf_size));
-}
-// Premultiplied colour and opacity of a segment of length u > 0.
-vec4 shade(float sf, float sb, float u) {
-    if (u_mode == 0) {
-        if (!(u_kappa_max > 0.0)) return vec4(0.0);
-        float v = 0.5 * (tf(sf).a + tf(sb).a);
-        float x = u / u_max_len * (u_exp_size - 1.0);
-        float y = v / u_kappa_max * (u_exp_size - 1.0);
-        float alpha = texture(u_exp, vec2(grid(x, u_exp_size), grid(y, u_exp_size))).r;
-        return vec4(tf(0.5 * (sf + sb)).rgb * alpha, alpha);
-    }
-    float scale = (u_pre_scalars - 1.0) / (u_s_hi - u_s_lo);
-    float x = (sf - u_s_lo) * scale;
-    float y = (sb - u_s_lo) * scale;
-    float z = u / u_max_len * (u_pre_lengths - 1.0);
-    return texture(u_pre, vec3(grid(z, u_pre_lengths), grid(y, u_pre_scalars),
-                               grid(x, u_pre_scalars)));
-}
-)";
-
-const char* kVolumeFsMain = R"(
-noperspective in float v_u;
-noperspective in float v_sf;
-noperspective in float v_sb;
-noperspective in float v_tf;
-void main() {
-    float u = v_u, sf = v_sf, sb = v_sb;
-    float room = texelFetch(u_opaque_t, ivec2(gl_FragCoord.xy), 0).r - v_tf;
-    if (!(room > 0.0)) discard;
-    if (room < u) {
-        sb = sf + (sb - sf) * room / u;
-        u = room;
-    }
-    if (!(u > 0.0)) discard;
-    if (u_mode == 0 && !(u_kappa_max > 0.0)) discard;
-    o_color = shade(sf, sb, u);
-}
-)";
-
-// A cell reaching behind a perspective eye (or too close to it to project): a rectangle over
-// the screen where its part in front of the eye may be, each pixel's ray clipped exactly
-// against the cell's four face planes (eye-relative), at the eye and at the opaque surface.
-const char* kExactVs = R"(#version 330 core
-uniform vec4 u_rect;  // x0, y0, x1, y1 in normalized device coordinates
-void main() {
-    gl_Position = vec4((gl_VertexID & 1) != 0 ? u_rect.z : u_rect.x,
-                       (gl_VertexID & 2) != 0 ? u_rect.w : u_rect.y, -1.0, 1.0);
-}
-)";
-
-const char* kExactFsMain = R"(
-uniform vec4 u_plane[4];  // unit outward normal n, and offset - n . eye: n . x = w outside < 0
-uniform vec4 u_scalar;    // the scalar's gradient, and the scalar at the eye
-uniform vec3 u_dir0;      // the ray direction at image point (0, 0), over its forward part
-uniform vec3 u_dir_x;     // its change per pixel along x and along y (row 0 at the top)
-uniform vec3 u_dir_y;
-uniform float u_height;
-void main() {
-    vec3 dir = normalize(u_dir0 + gl_FragCoord.x * u_dir_x +
-                         (u_height - gl_FragCoord.y) * u_dir_y);
-    float t_in = 0.0;
-    float t_out = texelFetch(u_opaque_t, ivec2(gl_FragCoord.xy), 0).r;
-    for (int k = 0; k < 4; ++k) {
-        float denom = dot(u_plane[k].xyz, dir);
-        float num = u_plane[k].w;
-        if (denom < 0.0) {
-            t_in = max(t_in, num / denom);
-        } else if (denom > 0.0) {
-            t_out = min(t_out, num / denom);
-        } else if (num < 0.0) {
-            discard;
-        }
-    }
-    if (!(t_out > t_in)) discard;
-    if (u_mode == 0 && !(u_kappa_max > 0.0)) discard;
-    float slope = dot(u_scalar.xyz, dir);
-    o_color = shade(u_scalar.w + t_in * slope, u_scalar.w + t_out * slope, t_out - t_in);
-}
-)";
-
-const char* kOpaqueVs = R"(#version 330 core
-layout(location = 0) in vec3 a_world;
-layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec3 a_color;
-uniform vec3 u_eye;
-uniform vec3 u_right;
-uniform vec3 u_up;
-uniform vec3 u_forward;
-uniform float u_half_w;
-uniform float u_half_h;
-uniform int u_ortho;
-out vec3 v_world;
-flat out vec3 v_normal;
-flat out vec3 v_color;
-void main() {
-    vec3 d = a_world - u_eye;
-    float w = u_ortho != 0 ? 1.0 : dot(d, u_forward);
-    gl_Position = vec4(dot(d, u_right) / u_half_w, dot(d, u_up) / u_half_h, 0.0, w);
-    v_world = a_world;
-    v_normal = a_normal;
-    v_color = a_color;
-}
-)";
-
-const char* kOpaqueFs = R"(#version 330 core
-in vec3 v_world;
-flat in vec3 v_normal;
-flat in vec3 v_color;
-uniform vec3 u_eye;
-uniform vec3 u_forward;
-uniform int u_ortho;
-uniform float u_depth_scale;
-layout(location = 0) out vec4 o_color;
-layout(location = 1) out float o_t;
-void main() {
-    vec3 d = v_world - u_eye;
-    float t = u_ortho != 0 ? dot(d, u_forward) : length(d);
-    vec3 dir = u_ortho != 0 ? u_forward : normalize(d);
-    float lambert = abs(dot(v_normal, dir));
-    o_color = vec4(v_color * (0.2 + 0.8 * lambert), 1.0);
-    o_t = t;
-    gl_FragDepth = clamp(t * u_depth_scale, 0.0, 1.0);
-}
-)";
 
 double ms_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
-}
-
-Result<GLuint> compile(GLenum type, const char* source, const char* name) {
-    const GLuint shader = glCreateShader(type);
-    glShaderSource(shader, 1, &source, nullptr);
-    glCompileShader(shader);
-    GLint ok = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[4096] = {0};
-        glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
-        glDeleteShader(shader);
-        return make_error(ErrorCode::kUnsupported,
-                          std::string("GL shader '") + name + "' does not compile: " + log);
-    }
-    return shader;
-}
-
-Result<GLuint> link(const char* vs, const char* fs, const char* name) {
-    TR_TRY(const GLuint v, compile(GL_VERTEX_SHADER, vs, name));
-    auto f = compile(GL_FRAGMENT_SHADER, fs, name);
-    if (!f.ok()) {
-        glDeleteShader(v);
-        return f.error();
-    }
-    const GLuint program = glCreateProgram();
-    glAttachShader(program, v);
-    glAttachShader(program, *f);
-    glLinkProgram(program);
-    glDeleteShader(v);
-    glDeleteShader(*f);
-    GLint ok = 0;
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[4096] = {0};
-        glGetProgramInfoLog(program, sizeof(log), nullptr, log);
-        glDeleteProgram(program);
-        return make_error(ErrorCode::kUnsupported,
-                          std::string("GL program '") + name + "' does not link: " + log);
-    }
-    return program;
-}
-
-// What the exact fragment shader needs of one cell (its place in the order, its rectangle on
-// screen, its planes and scalar relative to the eye), in single precision as GL takes it.
-struct ExactCell {
-    std::size_t index;  // in the order
-    float rect[4];      // x0, y0, x1, y1 in normalized device coordinates
-    float planes[16];   // per face: unit outward normal, offset - normal . eye
-    float scalar[4];    // gradient, scalar at the eye
-};
-
-// Whether cell `t` takes the exact path: a corner at or behind a perspective eye (the CPU
-// renderer's test), or projected so far outside the image (a corner just in front of the eye)
-// that single-precision screen positions and attributes would not hold it.
-bool needs_exact(const TetMesh& mesh, CellId t, const CameraFrame& camera) {
-    const double guard = kExactGuard * (camera.width() + camera.height());
-    for (PointId p : mesh.tet(t)) {
-        const Vec3 q = camera.project(mesh.point(p));
-        if (q.z <= 0) return true;
-        if (std::abs(q.x - 0.5 * camera.width()) > guard) return true;
-        if (std::abs(q.y - 0.5 * camera.height()) > guard) return true;
-    }
-    return false;
-}
-
-// The exact cell of order index `index` (tet `t`): its screen rectangle, planes and scalar.
-// False when nothing of it in front of the eye reaches the image (or the tet is degenerate).
-// The part of the tet in front of the eye projects to the convex hull of its front corners'
-// images and of the directions (right, up parts) of the points where it meets the eye's plane:
-// a direction with a positive right part makes the rectangle reach the image's right edge, and
-// so on; one with neither part (the eye on the tet's boundary or inside it) the whole image.
-bool exact_cell(const TetMesh& mesh, std::span<const float> scalar, CellId t, std::size_t index,
-                const CameraFrame& camera, ExactCell& out) {
-    const Vec3& eye = camera.eye();
-    const Tet& tet = mesh.tet(t);
-    Vec3 d[4];
-    double z[4];
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
-    bool front = false;
-    for (int k = 0; k < 4; ++k) {
-        d[k] = mesh.point(tet[k]) - eye;
-        z[k] = glm::dot(d[k], camera.forward());
-        if (z[k] > 0) {
-            const Vec3 q = camera.project(mesh.point(tet[k]));
-            x0 = std::min(x0, q.x), x1 = std::max(x1, q.x);
-            y0 = std::min(y0, q.y), y1 = std::max(y1, q.y);
-            front = true;
-        }
-    }
-    if (!front) return false;
-    for (int a = 0; a < 4; ++a) {
-        if (z[a] > 0) continue;
-        for (int b = 0; b < 4; ++b) {
-            if (!(z[b] > 0)) continue;
-            const Vec3 q = d[a] + (d[b] - d[a]) * (-z[a] / (z[b] - z[a]));
-            const double right = glm::dot(q, camera.right()), up = glm::dot(q, camera.up());
-            if (right == 0 && up == 0) x0 = y0 = -kInf, x1 = y1 = kInf;
-            if (right > 0) x1 = kInf;
-            if (right < 0) x0 = -kInf;
-            if (up > 0) y0 = -kInf;  // image rows go down
-            if (up < 0) y1 = kInf;
-        }
-    }
-    const double w = camera.width(), h = camera.height();
-    // Pixels whose centres may be inside, padded by a pixel (the fragment shader decides).
-    x0 = std::clamp(std::floor(x0) - 1.0, 0.0, w), x1 = std::clamp(std::ceil(x1) + 1.0, 0.0, w);
-    y0 = std::clamp(std::floor(y0) - 1.0, 0.0, h), y1 = std::clamp(std::ceil(y1) + 1.0, 0.0, h);
-    if (!(x1 > x0) || !(y1 > y0)) return false;
-    const TetPlanes planes = tet_planes(mesh, scalar, t);
-    for (int k = 0; k < 4; ++k) {
-        const double len = glm::length(planes.normals[k]);
-        if (!(len > 0)) return false;
-        const Vec3 n = planes.normals[k] / len;
-        out.planes[4 * k + 0] = static_cast<float>(n.x);
-        out.planes[4 * k + 1] = static_cast<float>(n.y);
-        out.planes[4 * k + 2] = static_cast<float>(n.z);
-        out.planes[4 * k + 3] =
-            static_cast<float>((planes.offsets[k] - glm::dot(planes.normals[k], eye)) / len);
-    }
-    out.index = index;
-    out.rect[0] = static_cast<float>(2 * x0 / w - 1);
-    out.rect[1] = static_cast<float>(1 - 2 * y1 / h);
-    out.rect[2] = static_cast<float>(2 * x1 / w - 1);
-    out.rect[3] = static_cast<float>(1 - 2 * y0 / h);
-    out.scalar[0] = static_cast<float>(planes.gradient.x);
-    out.scalar[1] = static_cast<float>(planes.gradient.y);
-    out.scalar[2] = static_cast<float>(planes.gradient.z);
-    out.scalar[3] = static_cast<float>(planes.s0 + glm::dot(planes.gradient, eye - planes.p0));
-    return true;
 }
 
 }  // namespace
@@ -366,9 +67,7 @@ struct GlTetRenderer::State {
     int width = 0, height = 0;
     const TetMesh* mesh = nullptr;
     std::vector<float> scalar;
-    std::vector<float> staging;
-    std::vector<std::uint8_t> exact_flags;  // per index of the order: drawn exactly
-    std::vector<ExactCell> exact_cells;
+    CellStream cells;  // the last frame's vertex stream and exact cells
     int mode = 0;
     SegmentShaderTables tables;
     std::unique_ptr<TransferFunction> tf;
@@ -414,11 +113,10 @@ Result<std::unique_ptr<GlTetRenderer>> GlTetRenderer::create() {
     std::unique_ptr<GlTetRenderer> r(new GlTetRenderer());
     r->state_ = std::make_unique<State>();
     State& s = *r->state_;
-    const std::string volume_fs = std::string("#version 330 core\n") + kShadeGlsl + kVolumeFsMain;
-    const std::string exact_fs = std::string("#version 330 core\n") + kShadeGlsl + kExactFsMain;
-    TR_TRY(s.volume_program, link(kVolumeVs, volume_fs.c_str(), "volume"));
-    TR_TRY(s.opaque_program, link(kOpaqueVs, kOpaqueFs, "opaque"));
-    TR_TRY(s.exact_program, link(kExactVs, exact_fs.c_str(), "exact"));
+    using namespace detail::glsl;
+    TR_TRY(s.volume_program, detail::link_program({kVolumeVs}, {kShade, kVolumeFs}, "volume"));
+    TR_TRY(s.opaque_program, detail::link_program({kOpaqueVs}, {kOpaqueFs}, "opaque"));
+    TR_TRY(s.exact_program, detail::link_program({kExactVs}, {kShade, kExactFs}, "exact"));
     glGenVertexArrays(1, &s.exact_vao);
     glGenVertexArrays(1, &s.volume_vao);
     glGenBuffers(1, &s.volume_vbo);
@@ -585,57 +283,16 @@ GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const Ce
     // CPU: classify every cell of the order into its slot of the vertex stream.
     const auto classify_start = std::chrono::steady_clock::now();
     const std::size_t n = order.size();
-    s.staging.resize(n * kVerticesPerCell * kFloatsPerVertex);
-    s.exact_flags.assign(n, 0);
-    s.exact_cells.clear();
-    std::atomic<std::size_t> drawn{0};
-    if (s.mesh && n > 0) {
-        const TetMesh& mesh = *s.mesh;
-        const std::span<const float> scalar = s.scalar;
-        const bool orthographic = camera.orthographic();
-        parallel_for_chunks(0, n, 2048, [&](std::size_t begin, std::size_t end) {
-            std::size_t local = 0;
-            for (std::size_t i = begin; i < end; ++i) {
-                float* out = &s.staging[i * kVerticesPerCell * kFloatsPerVertex];
-                const CellId t = order[i];
-                // Cells reaching behind the eye (or too close to it to project) are drawn
-                // exactly per pixel instead, in their place in the order.
-                const bool exact = !orthographic && needs_exact(mesh, t, camera);
-                s.exact_flags[i] = exact ? 1 : 0;
-                bool ok = !exact;
-                StProjection st;
-                if (ok) {
-                    const TetPlanes planes = tet_planes(mesh, scalar, t);
-                    ok = shirley_tuchman_projection(mesh, scalar, t, planes, camera, st);
-                }
-                if (!ok) {
-                    std::memset(out, 0, kVerticesPerCell * kFloatsPerVertex * sizeof(float));
-                    continue;
-                }
-                ++local;
-                auto put = [&](int slot, const StVertex& v) {
-                    float* o = out + slot * kFloatsPerVertex;
-                    o[0] = static_cast<float>(v.x);
-                    o[1] = static_cast<float>(v.y);
-                    o[2] = static_cast<float>(v.thickness);
-                    o[3] = static_cast<float>(v.s_front);
-                    o[4] = static_cast<float>(v.s_back);
-                    o[5] = static_cast<float>(v.t_front);
-                };
-                put(0, st.thick);
-                for (int k = 0; k < 4; ++k)
-                    put(1 + k, st.corners[st.hull[std::min(k, st.num_hull - 1)]]);
-            }
-            drawn += local;
-        });
-        for (std::size_t i = 0; i < n; ++i) {
-            ExactCell cell;
-            if (s.exact_flags[i] && exact_cell(mesh, scalar, order[i], i, camera, cell))
-                s.exact_cells.push_back(cell);
-        }
+    if (s.mesh) {
+        detail::classify_cells(*s.mesh, s.scalar, order, camera, s.cells);
+    } else {
+        s.cells.vertices.assign(n * kVerticesPerCell * kFloatsPerVertex, 0.0f);
+        s.cells.exact_flags.assign(n, 0);
+        s.cells.exact_cells.clear();
+        s.cells.projected = 0;
     }
-    stats.cells_exact = s.exact_cells.size();
-    stats.cells_drawn = drawn.load() + s.exact_cells.size();
+    stats.cells_exact = s.cells.exact_cells.size();
+    stats.cells_drawn = s.cells.projected + s.cells.exact_cells.size();
     stats.classify_ms = ms_since(classify_start);
 
     const auto raster_start = std::chrono::steady_clock::now();
@@ -730,7 +387,7 @@ GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const Ce
             glUniform1f(glGetUniformLocation(p, "u_tf_size"), static_cast<float>(kTfSize));
         }
         GLint rect_loc = -1, plane_loc = -1, scalar_loc = -1;
-        if (!s.exact_cells.empty()) {
+        if (!s.cells.exact_cells.empty()) {
             // Pixel (x, y)'s ray direction, scaled to unit forward part, is linear in x and y.
             const GLuint p = s.exact_program;
             auto forward_scaled = [&](double x, double y) {
@@ -761,8 +418,9 @@ GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const Ce
         glBindTexture(GL_TEXTURE_2D, s.t_tex);
         glBindVertexArray(s.volume_vao);
         glBindBuffer(GL_ARRAY_BUFFER, s.volume_vbo);
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.staging.size() * sizeof(float)),
-                     s.staging.data(), GL_STREAM_DRAW);
+        glBufferData(GL_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(s.cells.vertices.size() * sizeof(float)),
+                     s.cells.vertices.data(), GL_STREAM_DRAW);
         // The projected cells in batches between the exact ones, each exact cell in its place
         // (blending is order-dependent). Exact fragments sit at depth 0: the opaque surfaces
         // cut them in the shader.
@@ -775,7 +433,7 @@ GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const Ce
                 GL_TRIANGLES, static_cast<GLsizei>((end - next) * kIndicesPerCell), GL_UNSIGNED_INT,
                 reinterpret_cast<const void*>(next * kIndicesPerCell * sizeof(std::uint32_t)));
         };
-        for (const ExactCell& cell : s.exact_cells) {
+        for (const ExactCell& cell : s.cells.exact_cells) {
             draw_projected(cell.index);
             glUseProgram(s.exact_program);
             glBindVertexArray(s.exact_vao);
