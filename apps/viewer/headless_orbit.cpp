@@ -1,0 +1,86 @@
+#include <apps/cli_common.h>
+#include <apps/viewer/camera_control.h>
+#include <apps/viewer/headless_orbit.h>
+#include <io/write_image.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <pipeline/loaded_mesh.h>
+
+namespace tr::viewer {
+
+int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptions& options) {
+    const ViewerScene& vs = view.scene();
+    const int width = vs.scene.width, height = vs.scene.height;
+    const Camera& home = vs.scene.camera;
+    const int frames = std::max(options.frames, 1);
+    const Vec3 axis = CameraFrame(home, width, height).up();
+    FlowControls* flow = view.flow_shown() ? view.flow() : nullptr;
+    double frame_ms = 0, sort_ms = 0, classify_ms = 0, raster_ms = 0;
+    std::size_t sorts = 0, drawn = 0;
+    std::uint64_t last_seen = 0;
+    if (flow) {
+        // Grown before the frames; they show it growing, one layer a frame, and the last frame
+        // shows all of it.
+        if (const auto error = flow->grow_and_wait()) return apps::report_error(*error);
+    }
+    for (int i = 0; i < frames; ++i) {
+        const auto frame_start = std::chrono::steady_clock::now();
+        const double angle = glm::radians(options.orbit) * (i + 1) / frames;
+        const Camera camera = orbit_camera(home, axis, angle);
+        const bool last = i + 1 == frames;
+        const CameraFrame frame(camera, width, height);
+        gl::GlFrameStats stats;
+        if (flow) {
+            flow->show_layers(last ? flow->num_layers() : static_cast<std::size_t>(i + 1));
+            stats = view.render_flow(frame);
+        } else {
+            const SortedOrder order = view.current_order(camera, last);
+            if (order.view_id != last_seen) {
+                last_seen = order.view_id;
+                sort_ms += order.stats.milliseconds;
+                ++sorts;
+            }
+            stats = view.render_volume(frame, order);
+        }
+        classify_ms += stats.classify_ms;
+        raster_ms += stats.raster_ms;
+        drawn = stats.cells_drawn;
+        if (last && panel) {
+            view.active().bind_framebuffer();
+            panel->add_frame_ms(ms_since(frame_start));
+            // Auto-sized windows appear on ImGui's second frame: lay out twice first.
+            panel->draw(camera, false);
+            panel->draw(camera, false);
+            panel->draw(camera);
+        }
+        frame_ms += ms_since(frame_start);
+    }
+    const Status written = write_image(view.active().read_image(), options.screenshot);
+    if (!written.ok()) return apps::report_error(written.error());
+    std::string flow_text;
+    std::size_t cells = vs.sort.mesh().num_real_tets();
+    if (flow) {
+        const GrownFlowVolume& grown = *flow->grown();
+        char text[160];
+        std::snprintf(text, sizeof(text),
+                      ", flow volume: %zu layers, %zu particles inserted, grown in %.1f ms",
+                      grown.volume->layer_tets.size(), grown.volume->particles_inserted,
+                      grown.grow_ms);
+        flow_text = text;
+        cells = grown.volume->mesh.num_tets();
+    }
+    std::fprintf(stderr,
+                 "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), sort %.1f ms mean "
+                 "(%zu sorts), classify %.1f ms, raster %.1f ms, %zu cells (%zu drawn), "
+                 "%dx%d, %s%s\n",
+                 frames, frame_ms / frames, 1000.0 * frames / frame_ms,
+                 sorts ? sort_ms / static_cast<double>(sorts) : 0.0, sorts, classify_ms / frames,
+                 raster_ms / frames, cells, drawn, width, height,
+                 integrator_name(view.integrator()).data(), flow_text.c_str());
+    return apps::kExitOk;
+}
+
+}  // namespace tr::viewer

@@ -1,0 +1,26 @@
+#pragma once
+// The viewer's headless mode (--screenshot): frames along an orbit about the home view's up
+// axis, the last one written to a file, timings on stderr; for tests and benchmarks.
+
+#include <apps/viewer/viewer_panel.h>
+#include <apps/viewer/volume_view.h>
+
+#include <string>
+
+namespace tr::viewer {
+
+struct HeadlessOptions {
+    std::string screenshot;  // the picture to write (.png, or .pfm for floats)
+    int frames = 1;          // frames along the orbit (at least 1)
+    double orbit = 0;        // degrees the camera turns over them (the last frame: all of it)
+};
+
+// Draws `options.frames` frames of `view` from its scene's camera turned by orbit * (i + 1) /
+// frames degrees, the last with its own view's order (waited for), and a shown flow volume
+// grown first (one layer a frame, every layer in the last). With `panel`, the panel is drawn
+// into the last frame. Writes the last frame and prints one line of timings to stderr.
+// Returns the exit code: apps::kExitOk, or apps::kExitError (reported) when growth fails or
+// the picture cannot be written.
+int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptions& options);
+
+}  // namespace tr::viewer

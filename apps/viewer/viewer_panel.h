@@ -1,0 +1,39 @@
+#pragma once
+// The viewer's Dear ImGui overlay: the panel (array, colour map, opacity curve, unit distance,
+// sort, integrator, the flow volume's section, timings), the seed outline and the keys window.
+
+#include <apps/viewer/opacity_editor.h>
+#include <apps/viewer/volume_view.h>
+#include <core/camera.h>
+
+#include <deque>
+
+namespace tr::viewer {
+
+class ViewerPanel {
+  public:
+    // `view` must outlive the panel; the panel's edits go to it. Needs an ImGui context with
+    // the GLFW and OpenGL 3 back-ends initialised.
+    explicit ViewerPanel(VolumeView& view) : view_(view) {}
+
+    // One ImGui frame, laid out for `camera` (the seed outline), drawn into the bound
+    // framebuffer unless `submit` is false (layout only).
+    void draw(const Camera& camera, bool submit = true);
+
+    void toggle_panel() { show_panel_ = !show_panel_; }
+    void toggle_keys() { show_keys_ = !show_keys_; }
+    // Whether an opacity point is being dragged.
+    bool dragging() const { return opacity_.dragging(); }
+    // A frame's time, for the panel's rolling mean over the last 30.
+    void add_frame_ms(double ms);
+
+  private:
+    void draw_panel();
+
+    VolumeView& view_;
+    OpacityEditor opacity_;
+    std::deque<double> frame_ms_;
+    bool show_panel_ = true, show_keys_ = false;
+};
+
+}  // namespace tr::viewer

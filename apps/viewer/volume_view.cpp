@@ -1,0 +1,122 @@
+#include <apps/viewer/volume_view.h>
+
+#include <utility>
+
+namespace tr::viewer {
+
+VolumeView::VolumeView(ViewerScene& scene, gl::GlTetRenderer& renderer, Integrator integrator,
+                       bool verbose)
+    : vs_(scene),
+      renderer_(renderer),
+      worker_(scene.sort.mesh(), scene.sort.adjacency()),
+      method_(scene.sort.method),
+      integrator_(integrator) {
+    renderer_.set_mesh(&vs_.sort.mesh(), vs_.scalar);
+    renderer_.set_opaque(vs_.opaque.layers());
+    renderer_.set_transfer_function(vs_.volume().transfer_function, integrator_, vs_.longest_edge);
+    if (vs_.flow) {
+        flow_ = std::make_unique<FlowControls>(*vs_.flow, vs_.opaque, vs_.scene.flow_volume,
+                                               integrator_, verbose);
+    }
+}
+
+SortedOrder VolumeView::current_order(const Camera& camera, bool exact) {
+    const bool changed = !requested_ || camera.position != requested_->position ||
+                         camera.focal_point != requested_->focal_point ||
+                         camera.view_up != requested_->view_up || method_ != requested_method_;
+    if (changed) {
+        ++view_id_;
+        requested_ = camera;
+        requested_method_ = method_;
+        const CameraFrame frame(camera, 16, 16);
+        worker_.request(SortView::from_camera(frame), method_, view_id_);
+    }
+    std::optional<SortedOrder> latest = exact ? std::nullopt : worker_.latest();
+    if (!latest) latest = worker_.wait_for(view_id_);
+    if (latest->view_id != last_order_id_) {
+        last_order_id_ = latest->view_id;
+        sort_ms_ = latest->stats.milliseconds;
+    }
+    order_current_ = latest->view_id == view_id_;
+    return *latest;
+}
+
+gl::GlFrameStats VolumeView::render_volume(const CameraFrame& frame, const SortedOrder& order) {
+    active_ = &renderer_;
+    last_stats_ = renderer_.render(frame, *order.order, vs_.scene.background);
+    return last_stats_;
+}
+
+gl::GlFrameStats VolumeView::render_flow(const CameraFrame& frame) {
+    if (!flow_ || flow_->layers_shown() == 0) {
+        active_ = &renderer_;
+        last_stats_ = renderer_.render(frame, {}, vs_.scene.background);
+    } else {
+        active_ = &flow_->renderer();
+        last_stats_ = flow_->render(frame, vs_.scene.background);
+    }
+    return last_stats_;
+}
+
+bool VolumeView::DrawnKey::operator==(const DrawnKey& o) const {
+    return camera.position == o.camera.position && camera.focal_point == o.camera.focal_point &&
+           camera.view_up == o.camera.view_up && camera.parallel_scale == o.camera.parallel_scale &&
+           order_id == o.order_id && tf_version == o.tf_version && width == o.width &&
+           height == o.height && flow_id == o.flow_id && flow_layers == o.flow_layers;
+}
+
+bool VolumeView::draw(const Camera& camera, int width, int height) {
+    if (flow_shown()) {
+        // The dye, unsorted; a new flow volume appears one layer a frame.
+        flow_->advance();
+        const GrownFlowVolume* grown = flow_->grown();
+        const DrawnKey key{
+            camera, 0, tf_version_, width, height, grown ? grown->id : 0, flow_->layers_shown()};
+        if (!drawn_ || !(key == *drawn_)) {
+            render_flow(CameraFrame(camera, width, height));
+            drawn_ = key;
+        }
+        return flow_->settled();
+    }
+    const SortedOrder order = current_order(camera, false);
+    // The volume is drawn again only when something it shows changed (the panel is drawn
+    // every frame so that it stays responsive).
+    const DrawnKey key{camera, order.view_id, tf_version_, width, height, 0, 0};
+    if (!drawn_ || !(key == *drawn_)) {
+        render_volume(CameraFrame(camera, width, height), order);
+        drawn_ = key;
+    }
+    return order_current_;
+}
+
+void VolumeView::rebuild_transfer_function() {
+    tf_dirty_ = false;
+    auto tf = make_transfer_function(vs_.edit);
+    if (!tf.ok()) {
+        status_ = tf.error().message;
+        return;
+    }
+    vs_.volume().transfer_function = std::move(tf).value();
+    ++tf_version_;
+    renderer_.set_transfer_function(vs_.volume().transfer_function, integrator_, vs_.longest_edge);
+    if (flow_) flow_->set_integrator(integrator_);
+}
+
+void VolumeView::set_integrator(Integrator integrator) {
+    if (integrator == integrator_) return;
+    integrator_ = integrator;
+    tf_dirty_ = true;
+}
+
+void VolumeView::select_scalar(const std::string& name) {
+    const Status s = viewer::select_scalar(vs_, name);
+    if (s.ok()) {
+        renderer_.set_scalar(vs_.scalar);
+        tf_dirty_ = true;
+        status_.clear();
+    } else {
+        status_ = s.error().message;
+    }
+}
+
+}  // namespace tr::viewer
