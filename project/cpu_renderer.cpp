@@ -1,3 +1,4 @@
+#include <core/check.h>
 #include <core/parallel.h>
 #include <project/cpu_renderer.h>
 #include <project/tet_projection.h>
@@ -83,16 +84,26 @@ double longest_edge(const TetMesh& mesh) {
 
 Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
     const auto start = std::chrono::steady_clock::now();
+    // Preconditions whose violation would read or write out of bounds (a bug in the caller).
+    TR_CHECK(in.mesh != nullptr && in.shader != nullptr && in.camera != nullptr);
     const TetMesh& mesh = *in.mesh;
     const CameraFrame& camera = *in.camera;
     const bool orthographic = camera.orthographic();
     const int w = camera.width(), h = camera.height();
+    TR_CHECK_EQ(in.scalar.size(), mesh.num_points());
+    if (in.opaque_color) {
+        TR_CHECK_EQ(in.opaque_color->width, w);
+        TR_CHECK_EQ(in.opaque_color->height, h);
+    }
+    if (in.opaque_depth) TR_CHECK_EQ(in.opaque_depth->size(), static_cast<std::size_t>(w) * h);
     const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
 
     // Screen boxes of the cells, then the cells binned into tiles keeping the order.
     std::vector<ScreenBox> boxes(in.order.size());
     std::vector<std::uint8_t> straddles(in.order.size(), 0);  // reaches behind the eye
+    const std::size_t num_real = mesh.num_real_tets();
     parallel_for(0, in.order.size(), 4096, [&](std::size_t i) {
+        TR_CHECK(in.order[i] < num_real);
         boxes[i] = screen_box(mesh, in.order[i], camera);
         if (!orthographic) {
             for (PointId p : mesh.tet(in.order[i])) {
@@ -129,6 +140,10 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                 rays[(y - py0) * kTile + (x - px0)] = camera.pixel_ray(x, y);
         }
         std::size_t tile_fragments = 0;
+        // A cell's fragments in this tile: segments, their pixels, their shading.
+        SegmentQuery queries[kTile * kTile];
+        std::uint32_t pixels[kTile * kTile];
+        ShadedSegment shaded[kTile * kTile];
         std::vector<int> on_edges;  // pixels of the current cell decided by the exact test
         for (std::uint32_t index : bins[tile]) {
             const CellId t = in.order[index];
@@ -151,9 +166,9 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                 s_eye = s0 + glm::dot(gradient, camera.eye() - p0);
             }
             // The exact segment of pixel (x, y)'s ray through this cell, clipped at the eye and
-            // at opaque depth, shaded and composited. A ray in the plane of a face shared by
-            // two cells belongs to the one whose outward normal is "positive".
-            auto draw_exact = [&](int x, int y, const Ray& ray) {
+            // at opaque depth: false when the ray misses it. A ray in the plane of a face shared
+            // by two cells belongs to the one whose outward normal is "positive".
+            auto segment_of = [&](std::size_t pixel, const Ray& ray, SegmentQuery& q) {
                 double t_in = 0.0;  // clipped at the eye (near plane)
                 double t_out = std::numeric_limits<double>::infinity();
                 for (int k = 0; k < 4; ++k) {
@@ -165,20 +180,26 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                     } else if (denom > 0) {
                         t_out = std::min(t_out, num / denom);
                     } else if (num < 0 || (num == 0 && !owns_plane(normals[k]))) {
-                        return;
+                        return false;
                     }
                 }
-                if (!(t_out > t_in)) return;
-                const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
+                if (!(t_out > t_in)) return false;
                 if (in.opaque_depth) {
                     t_out = std::min(t_out, (*in.opaque_depth)[pixel]);
-                    if (!(t_out > t_in)) return;
+                    if (!(t_out > t_in)) return false;
                 }
                 const double s_origin =
                     orthographic ? s0 + glm::dot(gradient, ray.origin - p0) : s_eye;
                 const double slope = glm::dot(gradient, ray.direction);
-                const ShadedSegment seg = in.shader->shade(s_origin + t_in * slope,
-                                                           s_origin + t_out * slope, t_out - t_in);
+                q = {s_origin + t_in * slope, s_origin + t_out * slope, t_out - t_in};
+                return true;
+            };
+            // One pixel's segment, shaded and composited.
+            auto draw_exact = [&](int x, int y, const Ray& ray) {
+                const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
+                SegmentQuery q;
+                if (!segment_of(pixel, ray, q)) return;
+                const ShadedSegment seg = in.shader->shade(q.s_front, q.s_back, q.length);
                 Vec3f& dst = image.pixels[pixel];
                 dst = seg.color + (1.0f - seg.alpha) * dst;
                 ++tile_fragments;
@@ -258,11 +279,25 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                 }
                 continue;
             }
+            // The cell's segments in this tile first, then shaded together (the shader
+            // overlaps their lookups) and composited: each pixel appears once per cell, so the
+            // order of compositing per pixel is the cells' order.
+            int count = 0;
             for (int y = b.y0; y <= b.y1; ++y) {
                 for (int x = b.x0; x <= b.x1; ++x) {
-                    draw_exact(x, y, rays[(y - py0) * kTile + (x - px0)]);
+                    const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
+                    if (segment_of(pixel, rays[(y - py0) * kTile + (x - px0)], queries[count])) {
+                        pixels[count++] = static_cast<std::uint32_t>(pixel);
+                    }
                 }
             }
+            const std::size_t n = static_cast<std::size_t>(count);
+            in.shader->shade(std::span(queries, n), std::span(shaded, n));
+            for (std::size_t f = 0; f < n; ++f) {
+                Vec3f& dst = image.pixels[pixels[f]];
+                dst = shaded[f].color + (1.0f - shaded[f].alpha) * dst;
+            }
+            tile_fragments += n;
         }
         fragments += tile_fragments;
     });

@@ -47,7 +47,11 @@ struct RenderInputs {
     const std::vector<double>* opaque_depth = nullptr;
 };
 
-// Renders the volume over the background (or opaque geometry). Preconditions: sizes agree.
+// Renders the volume over the background (or opaque geometry): camera.width() x height() pixels.
+// Preconditions, checked (TR_CHECK, core/check.h: a failure aborts with the check that failed,
+// as a wrong call would read or write out of bounds): mesh, shader and camera set; one scalar
+// per mesh point; every order id a real tet (< mesh.num_real_tets()); opaque colour and depth,
+// when given, the image's size. Cost: O(cells + fragments), threaded over screen tiles.
 Image render_projected_tetrahedra(const RenderInputs& inputs, RenderStats* stats = nullptr);
 
 // The longest segment a ray can have through any real tet (its longest edge): what a

@@ -22,6 +22,14 @@ Value piecewise_linear(const std::vector<Point>& points, double s, Get get) {
 
 }  // namespace
 
+// -(F(w) - F(v)) / (w - v) with F(u) = u ln u - u, written with d = (w - v) / v as
+// -(ln v + (1 + d) log1p(d) / d - 1).
+double mean_neg_log(double v, double w) {
+    const double d = (w - v) / v;
+    if (std::abs(d) < 1e-9) return -(std::log(v) + 0.5 * d);
+    return -(std::log(v) + (1.0 + d) * std::log1p(d) / d - 1.0);
+}
+
 Result<TransferFunction> TransferFunction::create(std::vector<ColorPoint> color,
                                                   std::vector<OpacityPoint> opacity,
                                                   double unit_distance) {
@@ -63,6 +71,12 @@ Result<TransferFunction> TransferFunction::create(std::vector<ColorPoint> color,
     tf.color_ = std::move(color);
     tf.opacity_ = std::move(opacity);
     tf.unit_distance_ = unit_distance;
+    tf.integral_.assign(tf.opacity_.size(), 0.0);
+    for (std::size_t i = 1; i < tf.opacity_.size(); ++i) {
+        const OpacityPoint& a = tf.opacity_[i - 1];
+        const OpacityPoint& b = tf.opacity_[i];
+        tf.integral_[i] = tf.integral_[i - 1] + (b.s - a.s) * mean_neg_log(1.0 - a.a, 1.0 - b.a);
+    }
     return tf;
 }
 
@@ -77,6 +91,41 @@ double TransferFunction::opacity(double s) const {
 
 double TransferFunction::extinction_from_opacity(double a) const {
     return -std::log1p(-a) / unit_distance_;
+}
+
+double TransferFunction::mean_extinction(double s0, double s1) const {
+    if (s0 > s1) std::swap(s0, s1);
+    const std::vector<OpacityPoint>& p = opacity_;
+    const std::size_t n = p.size();
+    // Piece k is [p[k-1].s, p[k].s] for 0 < k < n; piece 0 is below p[0].s, piece n above
+    // p[n-1].s (opacity constant there). piece_of(s): the first k with s < p[k].s (n if none).
+    auto piece_of = [&](double s) {
+        return static_cast<std::size_t>(
+            std::upper_bound(p.begin(), p.end(), s,
+                             [](double x, const OpacityPoint& q) { return x < q.s; }) -
+            p.begin());
+    };
+    // The opacity at s in piece k, from that piece's own line (so a step, two points at one s,
+    // is taken from the side the piece lies on).
+    auto u_at = [&](std::size_t k, double s) {
+        if (k == 0) return 1.0 - p.front().a;
+        if (k == n) return 1.0 - p.back().a;
+        const OpacityPoint& a = p[k - 1];
+        const OpacityPoint& b = p[k];
+        const double t = (s - a.s) / (b.s - a.s);
+        return 1.0 - (a.a + (b.a - a.a) * t);
+    };
+    // Integral of -ln u over [x0, x1] inside piece k.
+    auto part = [&](std::size_t k, double x0, double x1) {
+        if (!(x1 > x0)) return 0.0;
+        return (x1 - x0) * mean_neg_log(u_at(k, x0), u_at(k, x1));
+    };
+    const std::size_t k0 = piece_of(s0), k1 = piece_of(s1);
+    if (k0 == k1 || !(s1 > s0)) return mean_neg_log(u_at(k0, s0), u_at(k0, s1)) / unit_distance_;
+    // From s0 to the end of its piece, the whole pieces between, then to s1.
+    double sum = part(k0, s0, p[k0].s) + part(k1, p[k1 - 1].s, s1);
+    sum += integral_[k1 - 1] - integral_[k0];
+    return sum / (s1 - s0) / unit_distance_;
 }
 
 double TransferFunction::s_min() const { return std::min(color_.front().s, opacity_.front().s); }

@@ -20,6 +20,12 @@ struct OpacityPoint {
     double a;  // in [0, 1)
 };
 
+// The mean of -ln(u) over u in [v, w] (either order; v, w > 0), in closed form
+// (u ln u - u is an antiderivative of ln u) written to keep full precision as w -> v, where it
+// is -ln(v): the mean extinction, times unit_distance, of a piece along which the opacity
+// a = 1 - u is linear. Cost: a log and a log1p.
+double mean_neg_log(double v, double w);
+
 class TransferFunction {
   public:
     // Validates: at least one point each, s non-decreasing, rgb in [0, 1], a in [0, 1),
@@ -31,6 +37,13 @@ class TransferFunction {
     double opacity(double s) const;  // a(s), the opacity of a slab of thickness unit_distance
     double extinction(double s) const { return extinction_from_opacity(opacity(s)); }
     double extinction_from_opacity(double a) const;
+    // The mean of kappa over the scalar interval between s0 and s1 (either order), in closed
+    // form: the integral of -ln(1 - a) over each linear piece of a is u ln u - u with u = 1 - a,
+    // written as a divided difference (log1p) so that it stays accurate as s1 -> s0, where it
+    // is kappa(s0). A segment of length L along which the scalar runs linearly from s0 to s1
+    // has optical depth L * mean_extinction(s0, s1), exactly. Cost: O(log n) plus the pieces
+    // crossed (a cumulative sum covers whole pieces), two logarithms per end piece.
+    double mean_extinction(double s0, double s1) const;
 
     const std::vector<ColorPoint>& color_points() const { return color_; }
     const std::vector<OpacityPoint>& opacity_points() const { return opacity_; }
@@ -43,6 +56,9 @@ class TransferFunction {
     std::vector<ColorPoint> color_;
     std::vector<OpacityPoint> opacity_;
     double unit_distance_ = 1.0;
+    // integral_[i]: the integral of -ln(1 - a) * unit_distance over [opacity_[0].s,
+    // opacity_[i].s] (set by create).
+    std::vector<double> integral_;
 };
 
 }  // namespace tr
