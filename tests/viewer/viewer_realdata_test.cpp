@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <ostream>
 #include <string>
@@ -16,27 +17,28 @@ namespace {
 struct Case {
     const char* file;
     const char* scalar;  // "" for the viewer's default
+    double lit;          // the measured fraction of lit pixels (testing::lit_fraction)
 };
 
 void PrintTo(const Case& c, std::ostream* os) { *os << c.file; }
 
 const Case kCases[] = {
-    {"angular_sector/AngularSector.vtk", ""},
-    {"bluntfin/bluntfin.vtu", "Density"},
-    {"can/can.vtu", "EQPS"},
-    {"combustor/combustor.vtu", "Density"},
-    {"cylinder_tets/CylinderLinear.vtk", "vel_norm"},
-    {"cylinder_tets_quadratic/CylinderQuadratic.vtk", "pressure"},
-    {"disk_out_ref/disk_out_ref.ex2", "Temp"},
-    {"fea_bracket/dataset.vtu", "Equivalent (von-Mises) Stress (psi)"},
-    {"letter_a_tets/a_grid.vtk", ""},
-    {"lox_post/lox_post.vtu", "Density"},
-    {"mfem_escher/escher.vtu", ""},
-    {"mfem_fichera_mixed/fichera-mixed.vtu", ""},
-    {"office/office.binary.vtk", "scalars"},
-    {"prisms_penta_hexa/PentaHexa.vtk", ""},
-    {"tetra_mesh/tetraMesh.vtk", "scalars"},
-    {"wedge_blocks/mesh_fs8.exo", ""},
+    {"angular_sector/AngularSector.vtk", "", 0.1143},
+    {"bluntfin/bluntfin.vtu", "Density", 0.1616},
+    {"can/can.vtu", "EQPS", 0.0422},
+    {"combustor/combustor.vtu", "Density", 0.1315},
+    {"cylinder_tets/CylinderLinear.vtk", "vel_norm", 0.1138},
+    {"cylinder_tets_quadratic/CylinderQuadratic.vtk", "pressure", 0.1141},
+    {"disk_out_ref/disk_out_ref.ex2", "Temp", 0.1434},
+    {"fea_bracket/dataset.vtu", "Equivalent (von-Mises) Stress (psi)", 0.1012},
+    {"letter_a_tets/a_grid.vtk", "", 0.2292},
+    {"lox_post/lox_post.vtu", "Density", 0.1624},
+    {"mfem_escher/escher.vtu", "", 0.1304},
+    {"mfem_fichera_mixed/fichera-mixed.vtu", "", 0.3604},
+    {"office/office.binary.vtk", "scalars", 0.3055},
+    {"prisms_penta_hexa/PentaHexa.vtk", "", 0.2031},
+    {"tetra_mesh/tetraMesh.vtk", "scalars", 0.1695},
+    {"wedge_blocks/mesh_fs8.exo", "", 0.1716},
 };
 
 class ViewerRealData : public ::testing::TestWithParam<Case> {};
@@ -59,8 +61,12 @@ TEST_P(ViewerRealData, OpensAndDraws) {
     const Image image = testing::read_pfm(out);
     ASSERT_EQ(image.width, 128);
     ASSERT_EQ(image.height, 96);
-    // Something of the volume is on screen.
-    EXPECT_GT(testing::lit_fraction(image), 0.01) << c.file;
+    // The volume is on screen, as much of it as measured (the same in repeated runs under Mesa
+    // 22.3.6 llvmpipe): bounds a fifth below and a quarter above the measured fraction.
+    const double lit = testing::lit_fraction(image);
+    std::printf("[ %s ] lit fraction %.4f (measured %.4f)\n", c.file, lit, c.lit);
+    EXPECT_GT(lit, 0.8 * c.lit) << c.file;
+    EXPECT_LT(lit, 1.25 * c.lit) << c.file;
     std::filesystem::remove_all(dir);
 }
 

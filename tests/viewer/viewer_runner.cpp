@@ -61,27 +61,6 @@ ViewerRun run_viewer(const std::string& args, bool xvfb, const std::string& pref
     return run;
 }
 
-Image read_pfm(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string magic;
-    int w = 0, h = 0;
-    double scale = 0;
-    in >> magic >> w >> h >> scale;
-    in.get();
-    if (!in || magic != "PF" || w <= 0 || h <= 0 || scale >= 0) return {};
-    std::vector<float> data(static_cast<std::size_t>(w) * h * 3);
-    in.read(reinterpret_cast<char*>(data.data()),
-            static_cast<std::streamsize>(data.size() * sizeof(float)));
-    if (!in) return {};
-    Image image(w, h);
-    for (int y = 0; y < h; ++y) {
-        const float* row = &data[static_cast<std::size_t>(h - 1 - y) * w * 3];
-        for (int x = 0; x < w; ++x)
-            image.at(x, y) = Vec3f(row[3 * x], row[3 * x + 1], row[3 * x + 2]);
-    }
-    return image;
-}
-
 double lit_fraction(const Image& image, float threshold) {
     if (image.pixels.empty()) return 0;
     std::size_t lit = 0;
