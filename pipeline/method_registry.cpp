@@ -2,6 +2,7 @@
 // A new method: its own file with a make_*_method() and one line in methods() below.
 #include <memory>
 #include <pipeline/method.h>
+#include <pipeline/pbvr_methods.h>
 #include <pipeline/projected_tetrahedra.h>
 
 namespace tr {
@@ -33,8 +34,8 @@ const std::vector<std::unique_ptr<RenderMethod>>& methods() {
     static const std::vector<std::unique_ptr<RenderMethod>> all = [] {
         std::vector<std::unique_ptr<RenderMethod>> m;
         m.push_back(make_projected_tetrahedra_method());
-        m.push_back(std::make_unique<NotImplementedMethod>("pbvr-object", "issue 11"));
-        m.push_back(std::make_unique<NotImplementedMethod>("pbvr-image", "issue 11"));
+        m.push_back(make_pbvr_object_method());
+        m.push_back(make_pbvr_image_method());
         m.push_back(std::make_unique<NotImplementedMethod>("splat", "issue 14"));
         return m;
     }();

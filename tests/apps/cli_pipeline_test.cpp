@@ -105,7 +105,7 @@ TEST(CliPipeline, MethodOptionsOverrideTheScene) {
     const std::string scene = write_json(dir + "/s.json", block_scene(dir));
     const std::string out = dir + "/o.png";
     // Methods the spec names that are not built yet: one line, exit 1, no picture.
-    for (const char* name : {"pbvr-object", "pbvr-image", "splat"}) {
+    for (const char* name : {"splat"}) {
         auto run = run_cli("render " + scene + " --method " + name + " -o " + out);
         expect_one_line_error(run, 1, "not implemented yet");
         EXPECT_FALSE(std::filesystem::exists(out));

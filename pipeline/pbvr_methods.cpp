@@ -1,0 +1,264 @@
+#include <core/parallel.h>
+#include <project/cpu_renderer.h>
+#include <project/opaque_geometry.h>
+#include <project/pbvr_image.h>
+#include <project/pbvr_object.h>
+
+#include <chrono>
+#include <pipeline/pbvr_methods.h>
+
+namespace tr {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kDefaultRepetitions = 64;
+
+// The scene's volumes loaded, with their scalars, for a particle renderer.
+struct LoadedVolumes {
+    std::vector<std::shared_ptr<const LoadedMesh>> meshes;
+    std::vector<std::vector<float>> scalars;
+    ParticleScene scene;
+};
+
+Result<LoadedVolumes> load_volumes(Pipeline& pipeline, const Scene& scene, NamedStats& stats) {
+    LoadedVolumes loaded;
+    double load_ms = 0, tetrahedralize_ms = 0;
+    std::size_t cells = 0;
+    for (const SceneVolume& volume : scene.volumes) {
+        TR_TRY(std::shared_ptr<const LoadedMesh> mesh, pipeline.mesh(volume));
+        TR_TRY(std::vector<float> scalar, pipeline.scalar(volume, mesh->tets));
+        load_ms += mesh->read_ms;
+        tetrahedralize_ms += mesh->tetrahedralize_ms;
+        cells += mesh->tets.num_real_tets();
+        loaded.meshes.push_back(std::move(mesh));
+        loaded.scalars.push_back(std::move(scalar));
+    }
+    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
+        loaded.scene.volumes.push_back(
+            {&loaded.meshes[v]->tets, loaded.scalars[v], &scene.volumes[v].transfer_function});
+    }
+    stats.set("load_ms", load_ms);
+    stats.set("tetrahedralize_ms", tetrahedralize_ms);
+    stats.set("cells", cells);
+    stats.set("volumes", scene.volumes.size());
+    return loaded;
+}
+
+// What both methods refuse, and the keys they share.
+Status check_common(const Scene& scene, const RenderOptions& options, std::string_view name,
+                    double samples_per_pixel) {
+    if (scene.flow_volume) {
+        return make_error(ErrorCode::kUnsupported,
+                          "$.flow_volume: flow volumes are drawn by projected-tetrahedra, not " +
+                              std::string(name),
+                          scene.source);
+    }
+    if (options.reference) {
+        return make_error(ErrorCode::kUnsupported,
+                          "the reference ray caster is an integrator of projected-tetrahedra, not "
+                          "of " +
+                              std::string(name),
+                          scene.source);
+    }
+    const double work = samples_per_pixel * scene.width * scene.height;
+    if (work > kMaxParticleSamples) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "$.method: " + std::to_string(static_cast<long long>(samples_per_pixel)) +
+                              " samples per pixel of a " + std::to_string(scene.width) + "x" +
+                              std::to_string(scene.height) + " picture is " + std::to_string(work) +
+                              " samples, more than the " + std::to_string(kMaxParticleSamples) +
+                              " allowed",
+                          scene.source);
+    }
+    return {};
+}
+
+int repetitions_of(const Scene& scene) {
+    return scene.method && scene.method->repetitions ? *scene.method->repetitions
+                                                     : kDefaultRepetitions;
+}
+
+std::uint64_t seed_of(const Scene& scene) {
+    return scene.method && scene.method->seed ? static_cast<std::uint64_t>(*scene.method->seed) : 1;
+}
+
+// The method's own option `key`, if the scene gives it.
+const MethodOption* option(const Scene& scene, const std::string& key) {
+    if (!scene.method) return nullptr;
+    auto it = scene.method->options.find(key);
+    return it == scene.method->options.end() ? nullptr : &it->second;
+}
+
+// Checks that the scene's method options are among `keys`.
+Status only_keys(const Scene& scene, std::string_view name,
+                 std::initializer_list<std::string_view> keys) {
+    if (!scene.method) return {};
+    for (const auto& [key, value] : scene.method->options) {
+        bool known = false;
+        std::string list = "name, repetitions, seed";
+        for (std::string_view k : keys) {
+            known = known || k == key;
+            list += ", " + std::string(k);
+        }
+        if (!known) {
+            return method_option_error(
+                scene, key, "unknown key for " + std::string(name) + " (it takes " + list + ")");
+        }
+    }
+    return {};
+}
+
+// The opaque geometry of the scene, drawn, and stats about it.
+Result<OpaqueLayer> opaque_layer(Pipeline& pipeline, const Scene& scene, const CameraFrame& frame,
+                                 NamedStats& stats) {
+    TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
+    const auto start = Clock::now();
+    OpaqueLayer layer;
+    if (!opaque.empty()) layer = render_opaque(opaque.layers(), frame, scene.background);
+    stats.set("opaque_ms", ms_since(start));
+    return layer;
+}
+
+class PbvrObject final : public RenderMethod {
+  public:
+    std::string_view name() const override { return "pbvr-object"; }
+
+    Status check(const Scene& scene, const RenderOptions& options) const override {
+        TR_TRY_STATUS(only_keys(scene, name(), {"subpixel_level", "sampling"}));
+        int level = 1;
+        if (const MethodOption* o = option(scene, "subpixel_level")) {
+            const auto* v = std::get_if<std::int64_t>(o);
+            if (!v || *v < 1 || *v > 16) {
+                return method_option_error(scene, "subpixel_level",
+                                           "expected an integer in [1, 16]");
+            }
+            level = static_cast<int>(*v);
+        }
+        if (const MethodOption* o = option(scene, "sampling")) {
+            const auto* v = std::get_if<std::string>(o);
+            if (!v || !parse_particle_sampling(*v)) {
+                return method_option_error(scene, "sampling",
+                                           "expected \"exact\", \"uniform\" or \"metropolis\"");
+            }
+        }
+        return check_common(scene, options, name(),
+                            static_cast<double>(repetitions_of(scene)) * level * level);
+    }
+
+    Result<RenderResult> render(Pipeline& pipeline, const Scene& scene,
+                                const RenderOptions&) const override {
+        RenderResult result;
+        TR_TRY(LoadedVolumes loaded, load_volumes(pipeline, scene, result.stats));
+        const CameraFrame frame(scene.camera, scene.width, scene.height);
+        TR_TRY(const OpaqueLayer layer, opaque_layer(pipeline, scene, frame, result.stats));
+        ObjectPbvrOptions options;
+        options.repetitions = repetitions_of(scene);
+        options.seed = seed_of(scene);
+        if (const MethodOption* o = option(scene, "subpixel_level")) {
+            options.subpixel_level = static_cast<int>(std::get<std::int64_t>(*o));
+        }
+        if (const MethodOption* o = option(scene, "sampling")) {
+            options.sampling = *parse_particle_sampling(std::get<std::string>(*o));
+        }
+        ParticleScene& ps = loaded.scene;
+        ps.camera = &frame;
+        ps.background = scene.background;
+        if (!layer.depth.empty()) {
+            ps.opaque_color = &layer.color;
+            ps.opaque_depth = &layer.depth;
+        }
+        ObjectPbvrStats stats;
+        result.image = render_object_pbvr(ps, options, &stats);
+        NamedStats& s = result.stats;
+        s.set("generate_ms", stats.generate_ms);
+        s.set("resolve_ms", stats.resolve_ms);
+        s.set("particles", stats.particles);
+        s.set("candidates", stats.candidates);
+        s.set("method", std::string(name()));
+        s.set("repetitions", options.repetitions);
+        s.set("subpixel_level", options.subpixel_level);
+        s.set("sampling", std::string(particle_sampling_name(options.sampling)));
+        s.set("seed", options.seed);
+        s.set("threads", thread_count());
+        s.set("width", scene.width);
+        s.set("height", scene.height);
+        return result;
+    }
+};
+
+class PbvrImage final : public RenderMethod {
+  public:
+    std::string_view name() const override { return "pbvr-image"; }
+
+    Status check(const Scene& scene, const RenderOptions& options) const override {
+        TR_TRY_STATUS(only_keys(scene, name(), {"depth", "stratified"}));
+        if (const MethodOption* o = option(scene, "depth")) {
+            const auto* v = std::get_if<std::string>(o);
+            if (!v || !parse_particle_depth(*v)) {
+                return method_option_error(scene, "depth",
+                                           "expected \"inverse-cdf\", \"entry\", \"middle\", "
+                                           "\"exit\" or \"random\"");
+            }
+        }
+        if (const MethodOption* o = option(scene, "stratified")) {
+            if (!std::holds_alternative<bool>(*o)) {
+                return method_option_error(scene, "stratified", "expected true or false");
+            }
+        }
+        return check_common(scene, options, name(), repetitions_of(scene));
+    }
+
+    Result<RenderResult> render(Pipeline& pipeline, const Scene& scene,
+                                const RenderOptions&) const override {
+        RenderResult result;
+        TR_TRY(LoadedVolumes loaded, load_volumes(pipeline, scene, result.stats));
+        const CameraFrame frame(scene.camera, scene.width, scene.height);
+        TR_TRY(const OpaqueLayer layer, opaque_layer(pipeline, scene, frame, result.stats));
+        ImagePbvrOptions options;
+        options.repetitions = repetitions_of(scene);
+        options.seed = seed_of(scene);
+        if (const MethodOption* o = option(scene, "depth")) {
+            options.depth = *parse_particle_depth(std::get<std::string>(*o));
+        }
+        if (const MethodOption* o = option(scene, "stratified")) {
+            options.stratified = std::get<bool>(*o);
+        }
+        ParticleScene& ps = loaded.scene;
+        ps.camera = &frame;
+        ps.background = scene.background;
+        if (!layer.depth.empty()) {
+            ps.opaque_color = &layer.color;
+            ps.opaque_depth = &layer.depth;
+        }
+        if (ps.volumes.size() == 1) {  // the segments' mean colours (pbvr_image.h)
+            const auto start = Clock::now();
+            ps.volumes[0].shader =
+                &pipeline.shader(scene.volumes[0].transfer_function, Integrator::kPreintegrated,
+                                 longest_edge(loaded.meshes[0]->tets));
+            result.stats.set("shader_ms", ms_since(start));
+        }
+        ImagePbvrStats stats;
+        result.image = render_image_pbvr(ps, options, &stats);
+        NamedStats& s = result.stats;
+        s.set("raster_ms", stats.raster_ms);
+        s.set("fragments", stats.fragments);
+        s.set("particles", stats.particles);
+        s.set("method", std::string(name()));
+        s.set("repetitions", options.repetitions);
+        s.set("depth", std::string(particle_depth_name(options.depth)));
+        s.set("stratified", options.stratified);
+        s.set("seed", options.seed);
+        s.set("threads", thread_count());
+        s.set("width", scene.width);
+        s.set("height", scene.height);
+        return result;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<RenderMethod> make_pbvr_object_method() { return std::make_unique<PbvrObject>(); }
+std::unique_ptr<RenderMethod> make_pbvr_image_method() { return std::make_unique<PbvrImage>(); }
+
+}  // namespace tr
