@@ -83,7 +83,7 @@ void print_notes(const std::vector<std::string>& notes) {
 }
 
 void print_stats(const NamedStats& stats) {
-    nlohmann::json j = nlohmann::json::object();
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
     for (const auto& [key, value] : stats.entries()) {
         std::visit([&j, k = key](const auto& v) { j[k] = v; }, value);
     }

@@ -16,5 +16,6 @@ std::function<int()> add_sort_check_command(CLI::App& app);
 std::function<int()> add_sort_command(CLI::App& app);
 std::function<int()> add_render_command(CLI::App& app);
 std::function<int()> add_flowvol_command(CLI::App& app);
+std::function<int()> add_compare_command(CLI::App& app);
 
 }  // namespace tr::apps

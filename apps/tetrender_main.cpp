@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     auto sort = add_sort_command(app);
     auto render = add_render_command(app);
     auto flowvol = add_flowvol_command(app);
+    auto compare = add_compare_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("sort")) return sort();
         if (app.got_subcommand("render")) return render();
         if (app.got_subcommand("flowvol")) return flowvol();
+        if (app.got_subcommand("compare")) return compare();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tetrender: internal error: %s\n", e.what());
         return kExitError;

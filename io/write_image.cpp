@@ -2,6 +2,7 @@
 
 #include <png.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -98,6 +99,51 @@ Result<Image> read_png(const std::filesystem::path& path) {
         out.pixels[i] = Vec3f(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]) / 255.0f;
     }
     return out;
+}
+
+Result<Image> read_pfm(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return make_error(ErrorCode::kNotFound, "cannot open the file", path.string());
+    std::string magic;
+    long long w = 0, h = 0;
+    double scale = 0;
+    in >> magic >> w >> h >> scale;
+    in.get();
+    constexpr long long kMaxSide = 16384;
+    if (!in || magic != "PF" || w < 1 || h < 1 || w > kMaxSide || h > kMaxSide || scale == 0 ||
+        !std::isfinite(scale)) {
+        return make_error(ErrorCode::kParse,
+                          "not a colour PFM (\"PF\", width and height in [1, 16384], a scale)",
+                          path.string());
+    }
+    const bool swap = scale > 0;  // positive scale: big-endian floats
+    Image image(static_cast<int>(w), static_cast<int>(h));
+    std::vector<float> row(static_cast<std::size_t>(w) * 3);
+    for (long long y = h - 1; y >= 0; --y) {
+        in.read(reinterpret_cast<char*>(row.data()),
+                static_cast<std::streamsize>(row.size() * sizeof(float)));
+        if (!in) return make_error(ErrorCode::kParse, "the pixels end early", path.string());
+        for (float& v : row) {
+            if (!swap) continue;
+            std::uint32_t bits;
+            std::memcpy(&bits, &v, sizeof(bits));
+            bits = __builtin_bswap32(bits);
+            std::memcpy(&v, &bits, sizeof(bits));
+        }
+        for (long long x = 0; x < w; ++x) {
+            image.at(static_cast<int>(x), static_cast<int>(y)) =
+                Vec3f(row[3 * x], row[3 * x + 1], row[3 * x + 2]);
+        }
+    }
+    return image;
+}
+
+Result<Image> read_image(const std::filesystem::path& path) {
+    const std::string ext = path.extension().string();
+    if (ext == ".png" || ext == ".PNG") return read_png(path);
+    if (ext == ".pfm" || ext == ".PFM") return read_pfm(path);
+    return make_error(ErrorCode::kUnsupported, "image files must end in .png or .pfm",
+                      path.string());
 }
 
 Status write_image(const Image& image, const std::filesystem::path& path) {

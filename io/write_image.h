@@ -1,5 +1,5 @@
 #pragma once
-// Writing rendered images: 8-bit RGB PNG (libpng) and float PFM (for exact comparisons).
+// Rendered images: 8-bit RGB PNG (libpng) and float PFM (for exact comparisons), written and read.
 // Both are written to a temporary file and renamed: a failure leaves no half-written file.
 
 #include <core/image.h>
@@ -15,8 +15,15 @@ Status write_png(const Image& image, const std::filesystem::path& path);
 // Portable float map ("PF", little-endian, bottom row first as the format wants).
 Status write_pfm(const Image& image, const std::filesystem::path& path);
 
-// Reads an 8-bit RGB or RGBA PNG into a float image (for tests and comparisons).
+// Reads an 8-bit RGB or RGBA PNG into a float image (`tetrender compare`, tests).
 Result<Image> read_png(const std::filesystem::path& path);
+
+// Reads a PFM (colour "PF", either byte order, bottom row first). Errors: kNotFound, kParse
+// for a wrong header, a size past kMaxImageSide or a truncated body.
+Result<Image> read_pfm(const std::filesystem::path& path);
+
+// By extension: .png or .pfm.
+Result<Image> read_image(const std::filesystem::path& path);
 
 // By extension: .png or .pfm; anything else is an error.
 Status write_image(const Image& image, const std::filesystem::path& path);

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Convergence of particle-based rendering, measured: for one scene, the exact reference
+# (`--integrator reference`), then pbvr-image (stratified, the default), pbvr-image with the
+# paper's independent repetitions, and pbvr-object, each at R = 1, 4, 16, 64, 256, 1024
+# repetitions: foreground PSNR against the reference and the time per repetition. Prints a
+# markdown table (docs/benchmarks.md keeps the results).
+#   bench/pbvr_convergence.sh SCENE.json [BUILD_DIR] [WORK_DIR] [REPETITIONS...]
+# With python3-vtk9 installed, VTK's pixel-exact ray cast (../shared/tools/vtk render_vtk.py
+# --mapper raycast-px) of the same scene is compared with the reference as well.
+set -euo pipefail
+scene=$1
+build=${2:-build}
+work=${3:-$(mktemp -d)}
+shift $(( $# < 3 ? $# : 3 ))
+reps=("$@")
+[ ${#reps[@]} -eq 0 ] && reps=(1 4 16 64 256 1024)
+tetrender="$build/apps/tetrender"
+mkdir -p "$work"
+here=$(cd "$(dirname "$0")/.." && pwd)
+vtk_tool="$here/../shared/tools/vtk/render_vtk.py"
+
+ms() { python3 -c 'import json,sys; d=json.loads(sys.stdin.read()); print(d[sys.argv[1]])' "$1"; }
+psnr() { "$tetrender" compare "$1" "$2" --json | python3 -c 'import json,sys; print("%.2f" % json.load(sys.stdin)["psnr_foreground"])'; }
+
+ref_ms=$("$tetrender" render "$scene" --integrator reference -o "$work/reference.pfm" --stats | ms raster_ms)
+pt_ms=$("$tetrender" render "$scene" -o "$work/pt.pfm" --stats | ms raster_ms)
+echo "scene: $scene"
+echo "reference ray caster: $(printf %.0f "$ref_ms") ms; projected tetrahedra (preintegrated): $(printf %.0f "$pt_ms") ms, $(psnr "$work/pt.pfm" "$work/reference.pfm") dB"
+if [ -f "$vtk_tool" ] && /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
+  /usr/bin/python3 "$vtk_tool" "$scene" --mapper raycast-px --out "$work/vtk.png" > /dev/null
+  echo "VTK raycast-px against our reference: $(psnr "$work/vtk.png" "$work/reference.pfm") dB (8-bit PNG)"
+fi
+echo
+echo "| method | R | PSNR (dB) | ms per repetition | total ms |"
+echo "|---|---|---|---|---|"
+for variant in "pbvr-image" "pbvr-image independent" "pbvr-object"; do
+  method=${variant%% *}
+  # The independent variant: the same scene with "stratified": false.
+  case "$variant" in
+    *independent) python3 - "$scene" "$work/independent.json" <<'PY'
+import json, os, sys
+s = json.load(open(sys.argv[1]))
+base = os.path.dirname(os.path.abspath(sys.argv[1]))
+for v in s.get("volumes", [s]):
+    v["mesh"] = os.path.join(base, v["mesh"])
+s["method"] = {"name": "pbvr-image", "stratified": False}
+json.dump(s, open(sys.argv[2], "w"))
+PY
+      input="$work/independent.json" ;;
+    *) input="$scene" ;;
+  esac
+  for r in "${reps[@]}"; do
+    out="$work/${method}_$r.pfm"
+    stats=$("$tetrender" render "$input" --method "$method" --repetitions "$r" --seed 1 -o "$out" --stats)
+    key=raster_ms
+    [ "$method" = pbvr-object ] && key=generate_ms
+    total=$(echo "$stats" | ms "$key")
+    printf "| %s | %d | %s | %.1f | %.0f |\n" "$variant" "$r" "$(psnr "$out" "$work/reference.pfm")" \
+      "$(python3 -c "print($total / $r)")" "$total"
+  done
+done
