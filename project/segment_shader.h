@@ -124,12 +124,13 @@ class SegmentShader {
     ShadedSegment exact(double s_front, double s_back, double length) const;
     ShadedSegment exp_texture(double s_front, double s_back, double length) const;
     // kPreintegrated for any scalars (the parts beyond the control points are uniform slabs);
-    // for scalars in [s_lo_, s_hi_] (the common path); the same with the mean extinction in
-    // closed form; their common end.
+    // for scalars in [s_lo_, s_hi_] (the common path); its mean extinction at table coordinates
+    // (x, y), read or in closed form; its end from the optical depth tau.
     ShadedSegment preintegrated(double s_front, double s_back, double length) const;
     ShadedSegment preintegrated_inside(double s_front, double s_back, double length) const;
-    ShadedSegment preintegrated_closed_form(double s_front, double s_back, double length) const;
-    ShadedSegment preintegrated_finish(double s_front, double s_back, double length, float kappa,
+    float table_extinction(double s_front, double s_back, float x, float y) const;
+    float closed_form_extinction(double s_front, double s_back) const;
+    ShadedSegment preintegrated_finish(double s_front, double s_back, double length, float tau,
                                        float x, float y) const;
     // The segment integrated directly, where the mean-colour table is not accurate enough:
     // optical depth in closed form, mean colour from the pieces between control points with the
