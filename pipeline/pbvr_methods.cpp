@@ -18,16 +18,27 @@ constexpr int kDefaultRepetitions = 64;
 struct LoadedVolumes {
     std::vector<std::shared_ptr<const LoadedMesh>> meshes;
     std::vector<std::vector<float>> scalars;
-    ParticleScene scene;
+    VolumeScene scene;
 };
 
 Result<LoadedVolumes> load_volumes(Pipeline& pipeline, const Scene& scene, NamedStats& stats) {
     LoadedVolumes loaded;
     double load_ms = 0, tetrahedralize_ms = 0;
     std::size_t cells = 0;
-    for (const SceneVolume& volume : scene.volumes) {
-        TR_TRY(std::shared_ptr<const LoadedMesh> mesh, pipeline.mesh(volume));
-        TR_TRY(std::vector<float> scalar, pipeline.scalar(volume, mesh->tets));
+    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
+        const SceneVolume& volume = scene.volumes[v];
+        // With several volumes, errors say which.
+        auto name = [&](Error e) {
+            if (scene.volumes.size() > 1)
+                e.message = "volume " + std::to_string(v) + ": " + e.message;
+            return e;
+        };
+        auto loaded_mesh = pipeline.mesh(volume);
+        if (!loaded_mesh.ok()) return name(loaded_mesh.error());
+        std::shared_ptr<const LoadedMesh> mesh = std::move(loaded_mesh).value();
+        auto values = pipeline.scalar(volume, mesh->tets);
+        if (!values.ok()) return name(values.error());
+        std::vector<float> scalar = std::move(values).value();
         load_ms += mesh->read_ms;
         tetrahedralize_ms += mesh->tetrahedralize_ms;
         cells += mesh->tets.num_real_tets();
@@ -161,7 +172,7 @@ class PbvrObject final : public RenderMethod {
         if (const MethodOption* o = option(scene, "sampling")) {
             options.sampling = *parse_particle_sampling(std::get<std::string>(*o));
         }
-        ParticleScene& ps = loaded.scene;
+        VolumeScene& ps = loaded.scene;
         ps.camera = &frame;
         ps.background = scene.background;
         if (!layer.depth.empty()) {
@@ -224,7 +235,7 @@ class PbvrImage final : public RenderMethod {
         if (const MethodOption* o = option(scene, "stratified")) {
             options.stratified = std::get<bool>(*o);
         }
-        ParticleScene& ps = loaded.scene;
+        VolumeScene& ps = loaded.scene;
         ps.camera = &frame;
         ps.background = scene.background;
         if (!layer.depth.empty()) {

@@ -84,7 +84,7 @@ Pipeline& Pipeline::operator=(Pipeline&&) noexcept = default;
 void Pipeline::clear() {
     meshes_.clear();
     sorted_.clear();
-    shader_.reset();
+    shaders_.clear();
 }
 
 Status Pipeline::check(const Scene& scene, const RenderOptions& options) const {
@@ -266,14 +266,18 @@ Result<OpaqueSet> Pipeline::opaque(const Scene& scene) {
 
 const SegmentShader& Pipeline::shader(const TransferFunction& tf, Integrator integrator,
                                       double max_length) {
-    if (!shader_ || shader_->integrator != integrator || shader_->max_length != max_length ||
-        !same_transfer_function(shader_->tf, tf)) {
-        auto cached = std::make_unique<CachedShader>(CachedShader{tf, integrator, max_length, {}});
-        // The shader keeps a reference to its transfer function: the cached copy.
-        cached->shader = std::make_unique<SegmentShader>(cached->tf, integrator, max_length);
-        shader_ = std::move(cached);
+    for (const auto& cached : shaders_) {
+        if (cached->integrator == integrator && cached->max_length == max_length &&
+            same_transfer_function(cached->tf, tf)) {
+            return *cached->shader;
+        }
     }
-    return *shader_->shader;
+    auto cached = std::make_unique<CachedShader>(CachedShader{tf, integrator, max_length, {}});
+    // The shader keeps a reference to its transfer function: the cached copy.
+    cached->shader = std::make_unique<SegmentShader>(cached->tf, integrator, max_length);
+    if (shaders_.size() >= kMaxShaders) shaders_.erase(shaders_.begin());
+    shaders_.push_back(std::move(cached));
+    return *shaders_.back()->shader;
 }
 
 }  // namespace tr

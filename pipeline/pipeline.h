@@ -124,8 +124,10 @@ class Pipeline {
     // a surface file that does not read, a side set the volume's mesh does not have.
     Result<OpaqueSet> opaque(const Scene& scene);
 
-    // The shader for `tf` and `integrator` over segments up to `max_length`: the last one made
-    // is reused when all three are the same (the pre-integrated table takes 0.1 to 0.3 s).
+    // The shader for `tf` and `integrator` over segments up to `max_length`, made once and kept
+    // (the pre-integrated table takes tens of milliseconds; the last kMaxShaders made are kept,
+    // enough for every volume of a scene). The reference stays valid until kMaxShaders others
+    // have been made or clear() is called.
     const SegmentShader& shader(const TransferFunction& tf, Integrator integrator,
                                 double max_length);
 
@@ -146,8 +148,9 @@ class Pipeline {
     std::map<std::string, std::shared_ptr<const LoadedMesh>> meshes_;
     std::map<std::string, std::shared_ptr<const SortedMesh>> sorted_;
     VisibilitySorter sorter_;
-    struct CachedShader;  // the last shader made, with a copy of its transfer function
-    std::unique_ptr<CachedShader> shader_;
+    static constexpr std::size_t kMaxShaders = 2 * kMaxVolumes;
+    struct CachedShader;  // a shader with a copy of its transfer function
+    std::vector<std::unique_ptr<CachedShader>> shaders_;  // oldest first
 };
 
 }  // namespace tr

@@ -1,6 +1,7 @@
 #include <core/parallel.h>
 #include <project/cpu_renderer.h>
 #include <project/reference_raycaster.h>
+#include <project/segment_merge.h>
 
 #include <chrono>
 #include <pipeline/flow_volume_render.h>
@@ -84,6 +85,83 @@ Result<RenderResult> render_reference_picture(Pipeline& pipeline, const Scene& s
     return result;
 }
 
+// Every volume's segments merged per pixel by depth (project/segment_merge.h): several volumes
+// in one space, or one mesh whose cells have no provable visibility order. `why` is said in a
+// note and in the stats.
+Result<RenderResult> render_merged(Pipeline& pipeline, const Scene& scene,
+                                   const RenderOptions& options, std::vector<std::string> notes,
+                                   const std::string& why) {
+    RenderResult result;
+    result.notes = std::move(notes);
+    if (scene.volumes.size() == 1) {
+        result.notes.push_back(why +
+                               "; drawn by merging each pixel's segments by depth "
+                               "instead, which needs no order");
+    }
+    std::vector<std::shared_ptr<const LoadedMesh>> meshes;
+    std::vector<std::vector<float>> scalars;
+    double load_ms = 0, tetrahedralize_ms = 0;
+    std::size_t cells = 0;
+    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
+        const SceneVolume& volume = scene.volumes[v];
+        // With several volumes, errors say which.
+        auto name = [&](Error e) {
+            if (scene.volumes.size() > 1)
+                e.message = "volume " + std::to_string(v) + ": " + e.message;
+            return e;
+        };
+        auto loaded_mesh = pipeline.mesh(volume);
+        if (!loaded_mesh.ok()) return name(loaded_mesh.error());
+        std::shared_ptr<const LoadedMesh> mesh = std::move(loaded_mesh).value();
+        auto values = pipeline.scalar(volume, mesh->tets);
+        if (!values.ok()) return name(values.error());
+        std::vector<float> scalar = std::move(values).value();
+        load_ms += mesh->read_ms;
+        tetrahedralize_ms += mesh->tetrahedralize_ms;
+        cells += mesh->tets.num_real_tets();
+        meshes.push_back(std::move(mesh));
+        scalars.push_back(std::move(scalar));
+    }
+    result.stats.set("load_ms", load_ms);
+    result.stats.set("tetrahedralize_ms", tetrahedralize_ms);
+    auto start = Clock::now();
+    VolumeScene merged;
+    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
+        const TransferFunction& tf = scene.volumes[v].transfer_function;
+        merged.volumes.push_back(
+            {&meshes[v]->tets, scalars[v], &tf,
+             &pipeline.shader(tf, options.integrator, longest_edge(meshes[v]->tets))});
+    }
+    result.stats.set("shader_ms", ms_since(start));
+    const CameraFrame frame(scene.camera, scene.width, scene.height);
+    TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
+    start = Clock::now();
+    const OpaqueLayer layer =
+        opaque.empty() ? OpaqueLayer{} : render_opaque(opaque.layers(), frame, scene.background);
+    result.stats.set("opaque_ms", ms_since(start));
+    merged.camera = &frame;
+    merged.background = scene.background;
+    if (!opaque.empty()) {
+        merged.opaque_color = &layer.color;
+        merged.opaque_depth = &layer.depth;
+    }
+    SegmentMergeStats merge;
+    result.image = render_segment_merge(merged, &merge);
+    NamedStats& stats = result.stats;
+    stats.set("raster_ms", merge.raster_ms);
+    stats.set("cells", cells);
+    stats.set("volumes", scene.volumes.size());
+    stats.set("fragments", merge.fragments);
+    stats.set("overlap_intervals", merge.overlap_intervals);
+    stats.set("compositing", "merged");
+    stats.set("merged_because", why);
+    stats.set("integrator", std::string(integrator_name(options.integrator)));
+    stats.set("threads", thread_count());
+    stats.set("width", scene.width);
+    stats.set("height", scene.height);
+    return result;
+}
+
 class ProjectedTetrahedra final : public RenderMethod {
   public:
     std::string_view name() const override { return kDefaultMethod; }
@@ -96,10 +174,14 @@ class ProjectedTetrahedra final : public RenderMethod {
                                            "name, and ignores repetitions and seed)");
             }
         }
-        if (scene.volumes.size() > 1) {
+        if (scene.flow_volume && scene.volumes.size() > 1) {
             return make_error(ErrorCode::kUnsupported,
-                              "$.volumes: projected tetrahedra draw one volume; several volumes "
-                              "in one space need fused rendering (not implemented yet: issue 12)",
+                              "$.flow_volume: a flow volume grows through one mesh; this scene "
+                              "has several volumes",
+                              scene.source);
+        }
+        if (options.reference && scene.volumes.size() > 1) {
+            return make_error(ErrorCode::kUnsupported, "the reference ray caster draws one volume",
                               scene.source);
         }
         if (options.reference && !scene.opaque.empty()) {
@@ -117,19 +199,34 @@ class ProjectedTetrahedra final : public RenderMethod {
                                 const RenderOptions& options) const override {
         if (scene.flow_volume) return render_flow_volume(pipeline, scene, options);
         if (options.reference) return render_reference_picture(pipeline, scene);
-        const SceneVolume& volume = scene.volumes[0];
-        RenderResult result;
+        std::vector<std::string> notes;
         if (scene.method && (scene.method->repetitions || scene.method->seed)) {
-            result.notes.push_back(
+            notes.push_back(
                 "repetitions and seed apply to the stochastic methods: projected tetrahedra "
                 "ignore them");
         }
+        if (scene.volumes.size() > 1) {
+            return render_merged(pipeline, scene, options, std::move(notes), "several volumes");
+        }
+        const SceneVolume& volume = scene.volumes[0];
+        RenderResult result;
+        result.notes = std::move(notes);
         TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, pipeline.mesh(volume));
         add_load_stats(result.stats, *loaded);
         const CameraFrame frame(scene.camera, scene.width, scene.height);
         TR_TRY(const ViewOrder view, pipeline.visibility_order(volume, frame, options.sort));
         const PreparedSort& prepared = view.prepared;
         const SortStats& sort_stats = view.stats;
+        if (wants_convexification(options.sort) && !view.exact) {
+            // An exact order was asked for and cannot be had: merge each pixel's segments by
+            // depth instead, which needs none.
+            std::string why = !prepared.sorted->failure.empty()
+                                  ? prepared.sorted->failure
+                                  : std::to_string(sort_stats.cells_in_cycles) +
+                                        " cells lie in visibility cycles of this view";
+            return render_merged(pipeline, scene, options, std::move(result.notes),
+                                 "no exact visibility order (" + why + ")");
+        }
         if (!prepared.note.empty()) result.notes.push_back(prepared.note);
         if (prepared.exact && !view.exact) {
             result.notes.push_back(std::to_string(sort_stats.cells_in_cycles) +
@@ -171,6 +268,7 @@ class ProjectedTetrahedra final : public RenderMethod {
         stats.set("fragments", raster.fragments);
         stats.set("sort", std::string(sort_method_name(options.sort)));
         stats.set("sort_exact", view.exact);
+        stats.set("compositing", "sorted");
         stats.set("convexified", prepared.sorted->convexified);
         stats.set("cells_by_fallback", sort_stats.by_fallback);
         stats.set("cells_in_cycles", sort_stats.cells_in_cycles);

@@ -34,24 +34,26 @@ Result<SortedMesh> prepare_sorted_mesh(std::shared_ptr<const TetMesh> mesh, bool
                 sorted.mesh = std::move(filled);
                 sorted.convexified = true;
             } else {
-                sorted.note = "convexification gave an invalid mesh (" + adjacency.error().message +
-                              "): sorting the bare mesh, not exact";
+                sorted.failure =
+                    "convexification gave an invalid mesh: " + adjacency.error().message;
             }
         } else {
-            sorted.note = "convexification failed (" + report.error().message +
-                          "): sorting the bare mesh, not exact";
+            sorted.failure = "convexification failed: " + report.error().message;
         }
         sorted.convexify_ms = ms_since(start);
 #else
-        sorted.note = "no TetGen in this build to convexify the non-convex mesh: not exact";
+        sorted.failure = "no TetGen in this build to convexify the non-convex mesh";
 #endif
+        if (!sorted.failure.empty())
+            sorted.note = sorted.failure + ": sorting the bare mesh, not exact";
     }
     sorted.sorted_convex =
         sorted.convexified
             ? check_convexity(*sorted.mesh, sorted.adjacency, ConvexityOf::kAllTets).convex
             : sorted.real_convex;
     if (sorted.convexified && !sorted.sorted_convex && sorted.note.empty()) {
-        sorted.note = "the convexified mesh is not convex: not exact";
+        sorted.failure = "the convexified mesh is not convex";
+        sorted.note = sorted.failure + ": not exact";
     }
     return sorted;
 }

@@ -22,7 +22,8 @@ struct SortedMesh {
     bool real_convex = false;    // the real tets alone form a convex solid
     bool convexified = false;    // virtual tets were added
     bool sorted_convex = false;  // what is sorted (real + virtual tets) is convex: checked
-    std::string note;            // why a wanted convexification did not happen, if so
+    std::string note;            // why a wanted convexification did not happen, and what is sorted
+    std::string failure;         // just why (TetGen's reason, or that the build has no TetGen)
     double adjacency_ms = 0;
     double convexify_ms = 0;
 };

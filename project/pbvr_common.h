@@ -1,45 +1,20 @@
 #pragma once
 // What object- and image-space particle-based volume rendering share (particle-based paper,
-// section 3): the volumes and view they draw, the particle buffer entry (the nearest opaque
-// particle of a sub-pixel or of one repetition of a pixel), and the pictures' limits.
+// section 3): the particle buffer entry (the nearest opaque particle of a sub-pixel or of one
+// repetition of a pixel) and the pictures' limits. What they draw is a VolumeScene.
 //
 // Particles are opaque: the picture of one repetition is, per (sub-)pixel, the colour of the
 // nearest particle, or what lies behind the volume (the background or opaque geometry); the
 // ensemble average of many repetitions converges to the spec's ray integral.
 
-#include <core/camera.h>
 #include <core/image.h>
-#include <mesh/tet_mesh.h>
-#include <project/segment_shader.h>
-#include <project/transfer_function.h>
+#include <project/volume_scene.h>
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
 namespace tr {
-
-// One volume: its tets, the point scalar (one per mesh point) and its transfer function, and
-// optionally a shader of that transfer function (project/segment_shader.h) that image-space
-// rendering may use for a segment's mean colour.
-struct ParticleVolume {
-    const TetMesh* mesh = nullptr;
-    std::span<const float> scalar;
-    const TransferFunction* tf = nullptr;
-    const SegmentShader* shader = nullptr;
-};
-
-// What is drawn and how it is seen. Several volumes may overlap in space (fused rendering):
-// their particles compete for the nearest place.
-struct ParticleScene {
-    std::vector<ParticleVolume> volumes;
-    const CameraFrame* camera = nullptr;
-    Vec3 background{0.0};
-    // Opaque geometry already drawn (project/opaque_geometry.h): colour per pixel and the ray
-    // parameter of the surface per pixel (+inf where none). Either may be null.
-    const Image* opaque_color = nullptr;
-    const std::vector<double>* opaque_depth = nullptr;
-};
 
 // The work a picture may ask for: repetitions x pixels x sub-pixels above this is refused
 // before anything is allocated (2^38: 1024 repetitions of a 4096 x 4096 picture with 4 x 4

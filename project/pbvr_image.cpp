@@ -43,7 +43,7 @@ float key_of(std::uint64_t entry) {
 }
 
 struct VolumeState {
-    const ParticleVolume* volume;
+    const VolumeData* volume;
     ExtinctionIntegral phi;
     TileBins bins;
     std::vector<CellId> cells;
@@ -51,7 +51,7 @@ struct VolumeState {
 
 }  // namespace
 
-Image render_image_pbvr(const ParticleScene& scene, const ImagePbvrOptions& options,
+Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& options,
                         ImagePbvrStats* stats) {
     const auto start = Clock::now();
     const CameraFrame& camera = *scene.camera;
@@ -59,7 +59,7 @@ Image render_image_pbvr(const ParticleScene& scene, const ImagePbvrOptions& opti
     const int repetitions = std::max(1, options.repetitions);
     std::vector<VolumeState> volumes;
     volumes.reserve(scene.volumes.size());
-    for (const ParticleVolume& v : scene.volumes) {
+    for (const VolumeData& v : scene.volumes) {
         VolumeState state{&v, ExtinctionIntegral(*v.tf), {}, {}};
         state.cells.resize(v.mesh->num_real_tets());
         std::iota(state.cells.begin(), state.cells.end(), CellId{0});
@@ -94,7 +94,7 @@ Image render_image_pbvr(const ParticleScene& scene, const ImagePbvrOptions& opti
         fragments.clear();
         for (std::size_t v = 0; v < volumes.size(); ++v) {
             const VolumeState& state = volumes[v];
-            const ParticleVolume& volume = *state.volume;
+            const VolumeData& volume = *state.volume;
             for (std::uint32_t index : state.bins.bins[tile]) {
                 const CellId t = state.cells[index];
                 const CellFragments cell(*volume.mesh, volume.scalar, t, camera);

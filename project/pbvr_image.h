@@ -24,7 +24,7 @@
 // inside it) and the inverse-CDF depth, the colour of the nearest particle is replaced by its
 // expectation given the segment, the segment's mean colour C / alpha (a conditional
 // expectation: the same expected picture, less noise, and no depth to draw). It comes from the
-// volume's shader when one is given (ParticleVolume::shader: the pre-integrated table, within
+// volume's shader when one is given (VolumeData::shader: the pre-integrated table, within
 // half an 8-bit level of the exact integral); otherwise the particle's colour is drawn.
 
 #include <project/pbvr_common.h>
@@ -53,7 +53,7 @@ struct ImagePbvrStats {
 // R x (the sum of the opacities along a ray) per pixel; memory per worker 8 bytes per pixel of
 // a 32 x 32 tile per repetition (up to 1024 repetitions at a time: 8 MB) plus the tile's
 // fragments.
-Image render_image_pbvr(const ParticleScene& scene, const ImagePbvrOptions& options,
+Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& options,
                         ImagePbvrStats* stats = nullptr);
 
 }  // namespace tr

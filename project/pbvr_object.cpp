@@ -102,7 +102,7 @@ struct Cell {
     double volume;
 };
 
-Cell cell_of(const ParticleVolume& v, CellId t) {
+Cell cell_of(const VolumeData& v, CellId t) {
     Cell c;
     const Tet& tet = v.mesh->tet(t);
     for (int k = 0; k < 4; ++k) {
@@ -113,7 +113,7 @@ Cell cell_of(const ParticleVolume& v, CellId t) {
     return c;
 }
 
-double density_at(const ParticleVolume& v, const View& view, const Vec3& x, double s) {
+double density_at(const VolumeData& v, const View& view, const Vec3& x, double s) {
     const double z = depth_of(view, x);
     if (!view.orthographic && z < view.near) return 0.0;
     return v.tf->extinction(s) / footprint(view, x, z);
@@ -121,7 +121,7 @@ double density_at(const ParticleVolume& v, const View& view, const Vec3& x, doub
 
 // The 32-point quadrature of rho over a cell: 8 sub-tets by midpoint subdivision, the
 // degree-2 four-point rule on each.
-double integrate_density(const ParticleVolume& v, const View& view, const Cell& c) {
+double integrate_density(const VolumeData& v, const View& view, const Cell& c) {
     // The 10 nodes: corners 0..3, then edge midpoints (01, 02, 03, 12, 13, 23).
     Vec3 p[10];
     double s[10];
@@ -162,7 +162,7 @@ std::size_t floor_bernoulli(double mean, double u) {
 // order), then resolved into the pixels' running sums.
 class ParticleBuffer {
   public:
-    ParticleBuffer(const View& view, const ParticleScene& scene)
+    ParticleBuffer(const View& view, const VolumeScene& scene)
         : view_(view),
           scene_(scene),
           sub_width_(view.camera->width() * view.subpixel_level),
@@ -253,7 +253,7 @@ class ParticleBuffer {
     }
 
     const View& view_;
-    const ParticleScene& scene_;
+    const VolumeScene& scene_;
     int sub_width_, sub_height_;
     std::vector<std::atomic<std::uint64_t>> slots_;
     Image behind_;
@@ -261,7 +261,7 @@ class ParticleBuffer {
 
 // Generates one cell's particles of one repetition.
 struct Generator {
-    const ParticleVolume& volume;
+    const VolumeData& volume;
     std::size_t volume_index;
     const View& view;
     const ObjectPbvrOptions& options;
@@ -340,7 +340,7 @@ struct Generator {
 // (kExact: the cell's volume times the largest density over it), the density at the centroid
 // times the volume (kUniform) or the density's integral (kMetropolis). Zero for cells wholly
 // out of view or transparent.
-std::vector<float> cell_bounds(const ParticleVolume& v, const View& view,
+std::vector<float> cell_bounds(const VolumeData& v, const View& view,
                                const ParticleSampling sampling) {
     std::vector<float> bound(v.mesh->num_real_tets(), 0.0f);
     const CameraFrame& camera = *view.camera;
@@ -392,9 +392,9 @@ std::vector<float> cell_bounds(const ParticleVolume& v, const View& view,
     return bound;
 }
 
-double scene_size(const ParticleScene& scene) {
+double scene_size(const VolumeScene& scene) {
     Bounds3 b;
-    for (const ParticleVolume& v : scene.volumes) {
+    for (const VolumeData& v : scene.volumes) {
         const Bounds3 vb = v.mesh->bounds();
         if (!vb.empty()) b.extend(vb.lo), b.extend(vb.hi);
     }
@@ -423,13 +423,13 @@ std::optional<ParticleSampling> parse_particle_sampling(std::string_view name) {
     return std::nullopt;
 }
 
-double expected_particles(const ParticleVolume& volume, CellId t, const CameraFrame& camera,
+double expected_particles(const VolumeData& volume, CellId t, const CameraFrame& camera,
                           int subpixel_level) {
     const View view = make_view(camera, subpixel_level, volume.mesh->bounds().diagonal());
     return integrate_density(volume, view, cell_of(volume, t));
 }
 
-Image render_object_pbvr(const ParticleScene& scene, const ObjectPbvrOptions& options,
+Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& options,
                          ObjectPbvrStats* stats) {
     const CameraFrame& camera = *scene.camera;
     const int w = camera.width(), h = camera.height();
@@ -438,7 +438,7 @@ Image render_object_pbvr(const ParticleScene& scene, const ObjectPbvrOptions& op
     const View view = make_view(camera, level, scene_size(scene));
     ParticleBuffer buffer(view, scene);
     std::vector<std::vector<float>> bounds;
-    for (const ParticleVolume& v : scene.volumes) {
+    for (const VolumeData& v : scene.volumes) {
         bounds.push_back(cell_bounds(v, view, options.sampling));
     }
     std::vector<double> sum(static_cast<std::size_t>(w) * h * 3, 0.0);
@@ -448,7 +448,7 @@ Image render_object_pbvr(const ParticleScene& scene, const ObjectPbvrOptions& op
         auto start = Clock::now();
         buffer.clear();
         for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
-            const ParticleVolume& volume = scene.volumes[v];
+            const VolumeData& volume = scene.volumes[v];
             const Generator gen{volume, v, view, options, bounds[v]};
             parallel_for_chunks(
                 0, volume.mesh->num_real_tets(), kCellsPerChunk, [&](std::size_t b, std::size_t e) {
@@ -485,7 +485,7 @@ Image render_object_pbvr(const ParticleScene& scene, const ObjectPbvrOptions& op
     return image;
 }
 
-ObjectParticleSet ObjectParticleSet::generate(const ParticleScene& scene,
+ObjectParticleSet ObjectParticleSet::generate(const VolumeScene& scene,
                                               const ObjectPbvrOptions& options) {
     ObjectParticleSet set;
     set.options_ = options;
@@ -493,7 +493,7 @@ ObjectParticleSet ObjectParticleSet::generate(const ParticleScene& scene,
     set.options_.subpixel_level = std::max(1, options.subpixel_level);
     set.frame_ = *scene.camera;
     set.repetitions_.resize(static_cast<std::size_t>(set.options_.repetitions));
-    for (const ParticleVolume& v : scene.volumes) {
+    for (const VolumeData& v : scene.volumes) {
         set.functions_.push_back({*v.tf});
         set.cell_function_.emplace_back(v.mesh->num_real_tets(), std::uint16_t{0});
     }
@@ -501,14 +501,14 @@ ObjectParticleSet ObjectParticleSet::generate(const ParticleScene& scene,
     return set;
 }
 
-void ObjectParticleSet::generate_cells(const ParticleScene& scene,
+void ObjectParticleSet::generate_cells(const VolumeScene& scene,
                                        const std::vector<std::vector<char>>* only) {
     const View view = make_view(*frame_, options_.subpixel_level, scene_size(scene));
     ObjectPbvrOptions options = options_;
     // The first generation draws what render_object_pbvr draws; regenerations new numbers.
     if (generation_ > 0) options.seed = hash_key(options_.seed, generation_);
     for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
-        const ParticleVolume& volume = scene.volumes[v];
+        const VolumeData& volume = scene.volumes[v];
         const std::vector<float> bound = cell_bounds(volume, view, options.sampling);
         const Generator gen{volume, v, view, options, bound};
         const std::size_t cells = volume.mesh->num_real_tets();
@@ -553,7 +553,7 @@ bool ObjectParticleSet::reusable_for(const CameraFrame& camera) const {
     return std::abs(pixel_size(camera) - pixel_size(f)) <= 1e-12 * pixel_size(f);
 }
 
-Image ObjectParticleSet::render(const ParticleScene& scene, ObjectPbvrStats* stats) const {
+Image ObjectParticleSet::render(const VolumeScene& scene, ObjectPbvrStats* stats) const {
     const CameraFrame& camera = *scene.camera;
     const int w = camera.width(), h = camera.height();
     const View view = make_view(camera, options_.subpixel_level, scene_size(scene));
@@ -602,11 +602,11 @@ Image ObjectParticleSet::render(const ParticleScene& scene, ObjectPbvrStats* sta
     return image;
 }
 
-std::size_t ObjectParticleSet::retarget(const ParticleScene& scene) {
+std::size_t ObjectParticleSet::retarget(const VolumeScene& scene) {
     std::vector<std::vector<char>> redo(scene.volumes.size());
     std::size_t cells_redone = 0;
     for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
-        const ParticleVolume& volume = scene.volumes[v];
+        const VolumeData& volume = scene.volumes[v];
         const TransferFunction& now = *volume.tf;
         redo[v].assign(volume.mesh->num_real_tets(), 0);
         parallel_for(0, redo[v].size(), 1024, [&](std::size_t t) {

@@ -58,7 +58,7 @@ struct ObjectPbvrStats {
 // The expected number of particles in real tet `t` per repetition: the integral of rho over
 // it, computed by quadrature (32 points: 8 sub-tets by midpoint subdivision, 4 points each).
 // For tests and the kMetropolis count.
-double expected_particles(const ParticleVolume& volume, CellId t, const CameraFrame& camera,
+double expected_particles(const VolumeData& volume, CellId t, const CameraFrame& camera,
                           int subpixel_level);
 
 // The picture. Preconditions: the scene's sizes agree (scalar per point, opaque buffers of the
@@ -67,7 +67,7 @@ double expected_particles(const ParticleVolume& volume, CellId t, const CameraFr
 // particles (the sum over cells of rho's integral, about pixels x L^2 x the optical depth of a
 // ray, times the thinning overhead) plus O(pixels x L^2); memory 8 bytes per sub-pixel plus
 // 24 bytes per pixel.
-Image render_object_pbvr(const ParticleScene& scene, const ObjectPbvrOptions& options,
+Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& options,
                          ObjectPbvrStats* stats = nullptr);
 
 // Particles kept between pictures (paper, 3.2: "we need to change the particle radius on the
@@ -93,7 +93,7 @@ class ObjectParticleSet {
 
     // The particles of every repetition for the scene's view and transfer functions (the same
     // as render_object_pbvr draws). Memory: 24 bytes a particle.
-    static ObjectParticleSet generate(const ParticleScene& scene, const ObjectPbvrOptions& options);
+    static ObjectParticleSet generate(const VolumeScene& scene, const ObjectPbvrOptions& options);
 
     // Whether the kept particles hold for `camera`: orthographic, and the same sub-pixel size
     // (parallel scale, image height, sub-pixel level) as when generated; or the same camera.
@@ -101,11 +101,11 @@ class ObjectParticleSet {
 
     // The picture for `scene` (its volumes those of generate(), its transfer functions maybe
     // new, its camera one reusable_for accepts). Cost: O(particles + sub-pixels) per repetition.
-    Image render(const ParticleScene& scene, ObjectPbvrStats* stats = nullptr) const;
+    Image render(const VolumeScene& scene, ObjectPbvrStats* stats = nullptr) const;
 
     // Regenerates, for the scene's transfer functions, the particles of the cells whose kept
     // particles cannot give them (see above). Returns how many cells were regenerated.
-    std::size_t retarget(const ParticleScene& scene);
+    std::size_t retarget(const VolumeScene& scene);
 
     std::size_t size() const;  // particles kept, all repetitions
     std::size_t byte_size() const { return size() * sizeof(Kept); }
@@ -119,7 +119,7 @@ class ObjectParticleSet {
         std::uint32_t volume : 4;
     };
     // Generates the cells marked in `only` (all when null) and appends their particles.
-    void generate_cells(const ParticleScene& scene, const std::vector<std::vector<char>>* only);
+    void generate_cells(const VolumeScene& scene, const std::vector<std::vector<char>>* only);
 
     ObjectPbvrOptions options_;
     std::optional<CameraFrame> frame_;            // the view generated for

@@ -128,7 +128,7 @@ TEST(CliPipeline, MethodOptionsOverrideTheScene) {
     std::filesystem::remove_all(dir);
 }
 
-TEST(CliPipeline, SeveralVolumesAreNotDrawnYet) {
+TEST(CliPipeline, SeveralVolumesAreMerged) {
     const std::string dir = make_temp_dir();
     nlohmann::json scene = block_scene(dir);
     nlohmann::json volume;
@@ -138,10 +138,18 @@ TEST(CliPipeline, SeveralVolumesAreNotDrawnYet) {
     }
     scene["volumes"] = nlohmann::json::array({volume, volume});
     const std::string out = dir + "/o.png";
-    auto run =
-        run_cli("render " + shell_quote(write_json(dir + "/two.json", scene)) + " -o " + out);
-    expect_one_line_error(run, 1, "several volumes in one space need fused rendering");
-    EXPECT_FALSE(std::filesystem::exists(out));
+    auto run = run_cli("render " + shell_quote(write_json(dir + "/two.json", scene)) +
+                       " --stats -o " + out);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto j = nlohmann::json::parse(run.out);
+    EXPECT_EQ(j.at("compositing").get<std::string>(), "merged");
+    EXPECT_EQ(j.at("volumes").get<int>(), 2);
+    EXPECT_TRUE(std::filesystem::exists(out));
+    // Each volume's own errors name it.
+    scene["volumes"][1]["scalar"] = "nope";
+    run = run_cli("render " + shell_quote(write_json(dir + "/bad.json", scene)) + " -o " + out);
+    expect_one_line_error(run, 1, "volume 1: ");
+    EXPECT_NE(run.err.find("nope"), std::string::npos) << run.err;
     std::filesystem::remove_all(dir);
 }
 

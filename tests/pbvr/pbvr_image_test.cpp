@@ -59,7 +59,7 @@ TEST(ImagePbvr, UniformBoxConvergesToTheRayIntegral) {
     for (const View& v : views) {
         SCOPED_TRACE(v.name);
         const CameraFrame frame(v.camera, 64, 64);
-        ParticleScene scene;
+        VolumeScene scene;
         scene.volumes.push_back({&mesh, scalar, &tf});
         scene.camera = &frame;
         scene.background = background;
@@ -111,7 +111,7 @@ TEST(ImagePbvr, VaryingFieldConvergesToTheReference) {
             .value();
     const CameraFrame frame(camera_at({9, -6, 7}, {2, 2, 2}, false, 30), 48, 48);
     const Image reference = render_reference(mesh, scalar, tf, frame, Vec3(0.0));
-    ParticleScene scene;
+    VolumeScene scene;
     scene.volumes.push_back({&mesh, scalar, &tf});
     scene.camera = &frame;
     double previous = 0;
@@ -148,7 +148,7 @@ TEST(ImagePbvr, SameSeedSamePictureWhateverTheThreadCount) {
         TransferFunction::create({{0, {0, 0, 1}}, {1, {1, 0, 0}}}, {{0, 0.1}, {1, 0.6}}, 1.0)
             .value();
     const CameraFrame frame(camera_at({7, -5, 6}, {1.5, 1.5, 1.5}, false, 40), 70, 50);
-    ParticleScene scene;
+    VolumeScene scene;
     scene.volumes.push_back({&mesh, scalar, &tf});
     scene.camera = &frame;
     ImagePbvrOptions options;

@@ -62,7 +62,7 @@ TEST(ObjectPbvr, UniformBoxConvergesToTheRayIntegralForAnyCamera) {
     for (const View& v : views) {
         SCOPED_TRACE(v.name);
         const CameraFrame frame(v.camera, 64, 64);
-        ParticleScene scene;
+        VolumeScene scene;
         scene.volumes.push_back({&mesh, scalar, &tf});
         scene.camera = &frame;
         scene.background = background;
@@ -95,7 +95,7 @@ TEST(ObjectPbvr, ParticlesPerCellAreTheIntegralOfTheDensity) {
     const TransferFunction tf =
         TransferFunction::create({{0, {1, 1, 1}}}, {{0.0, 0.05}, {1.0, 0.6}}, 0.25).value();
     const CameraFrame frame(camera_at({-1.5, -1.5, -1.2}, {0.5, 0.5, 0.5}, false, 80), 40, 30);
-    ParticleScene scene;
+    VolumeScene scene;
     scene.volumes.push_back({&mesh, scalar, &tf});
     scene.camera = &frame;
     const double expected = expected_particles(scene.volumes[0], 0, frame, 1);
@@ -125,7 +125,7 @@ TEST(ObjectPbvr, SameSeedSamePictureWhateverTheThreadCount) {
         TransferFunction::create({{0, {0, 0, 1}}, {1, {1, 0, 0}}}, {{0, 0.1}, {1, 0.6}}, 1.0)
             .value();
     const CameraFrame frame(camera_at({7, -5, 6}, {1.5, 1.5, 1.5}, false, 40), 40, 40);
-    ParticleScene scene;
+    VolumeScene scene;
     scene.volumes.push_back({&mesh, scalar, &tf});
     scene.camera = &frame;
     ObjectPbvrOptions options;
@@ -159,9 +159,9 @@ TransferFunction box_tf(double opacity, const Vec3& color) {
     return TransferFunction::create({{1, color}}, {{1, opacity}}, 1.0).value();
 }
 
-ParticleScene particle_scene(const BoxScene& box, const TransferFunction& tf,
-                             const CameraFrame& frame) {
-    ParticleScene scene;
+VolumeScene particle_scene(const BoxScene& box, const TransferFunction& tf,
+                           const CameraFrame& frame) {
+    VolumeScene scene;
     scene.volumes.push_back({&box.mesh, box.scalar, &tf});
     scene.camera = &frame;
     scene.background = box.background;
@@ -172,7 +172,7 @@ TEST(ObjectParticleSet, KeptParticlesDrawWhatWasGenerated) {
     const BoxScene box;
     const TransferFunction tf = box_tf(0.2, box.color);
     const CameraFrame frame(camera_at({4.6, -2.2, 3.8}, {1.2, 1.8, 1.0}, false, 70), 48, 48);
-    const ParticleScene scene = particle_scene(box, tf, frame);
+    const VolumeScene scene = particle_scene(box, tf, frame);
     ObjectPbvrOptions options;
     options.repetitions = 8;
     const ObjectParticleSet set = ObjectParticleSet::generate(scene, options);
@@ -261,7 +261,7 @@ TEST(ObjectParticleSet, RetargetRegeneratesWhatTheKeptParticlesCannotGive) {
     const TransferFunction all =
         TransferFunction::create({{0, {1, 0.5, 0}}}, {{0.0, 0.3}, {1.0, 0.3}}, 1.0).value();
     const CameraFrame frame(camera_at({8, 6, 5}, {1.5, 1.5, 1.5}, true, 2.8), 48, 48);
-    ParticleScene scene;
+    VolumeScene scene;
     scene.volumes.push_back({&mesh, scalar, &half});
     scene.camera = &frame;
     ObjectPbvrOptions options;
