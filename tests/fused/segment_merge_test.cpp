@@ -135,3 +135,64 @@ TEST(SegmentMerge, SamePictureWhateverTheThreadCount) {
 
 }  // namespace
 }  // namespace tr
+
+#include <project/pbvr_image.h>
+
+namespace tr {
+namespace {
+
+// The particle-based paper's figures 3 and 4: two single tets that intersect, one red, one blue
+// (each a colour ramp over its own scalar), rendered by fused I-PBVR with each depth choice.
+// The inverse CDF places each particle where the opacity puts it; the fixed choices and the
+// uniform one do not, which shows where the tets overlap. Against the exact merge at the same
+// repetitions, the inverse CDF is nearest (the paper's claim, measured).
+TEST(FusedPbvr, InverseCdfBeatsTheOtherDepthChoicesOnTwoCrossingTets) {
+    const TetMesh red =
+        TetMesh::create({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}}, {{0, 1, 2, 3}}).value();
+    const TetMesh blue =
+        TetMesh::create({{1.1, 1.1, 1.1}, {-0.9, 1.1, 1.1}, {1.1, -0.9, 1.1}, {1.1, 1.1, -0.9}},
+                        {{0, 1, 2, 3}})
+            .value();
+    const std::vector<float> red_s = {0.0f, 1.0f, 0.5f, 0.2f}, blue_s = {1.0f, 0.1f, 0.6f, 0.3f};
+    const TransferFunction red_tf =
+        TransferFunction::create({{0, {0.3, 0, 0}}, {1, {1, 0.2, 0.1}}}, {{0, 0.2}, {1, 0.8}}, 0.6)
+            .value();
+    const TransferFunction blue_tf =
+        TransferFunction::create({{0, {0, 0, 0.3}}, {1, {0.1, 0.3, 1}}}, {{0, 0.2}, {1, 0.8}}, 0.6)
+            .value();
+    const SegmentShader red_shader(red_tf, Integrator::kPreintegrated, longest_edge(red));
+    const SegmentShader blue_shader(blue_tf, Integrator::kPreintegrated, longest_edge(blue));
+    const CameraFrame frame(testing::camera_at({3.5, -3.0, 2.5}, {0.7, 0.7, 0.7}, false, 40), 96,
+                            96);
+    VolumeScene scene;
+    scene.volumes.push_back({&red, red_s, &red_tf, &red_shader});
+    scene.volumes.push_back({&blue, blue_s, &blue_tf, &blue_shader});
+    scene.camera = &frame;
+    SegmentMergeStats merge;
+    const Image exact = render_segment_merge(scene, &merge);
+    EXPECT_GT(merge.overlap_intervals, 300u);
+    double inverse_cdf = 0, best_other = 0;
+    for (ParticleDepth depth :
+         {ParticleDepth::kInverseCdf, ParticleDepth::kEntry, ParticleDepth::kMiddle,
+          ParticleDepth::kExit, ParticleDepth::kRandom}) {
+        ImagePbvrOptions options;
+        options.repetitions = 256;
+        options.depth = depth;
+        const ImageComparison c =
+            compare_images(render_image_pbvr(scene, options), exact, Vec3f(0.0f));
+        std::printf("[ %s ] PSNR %.2f dB, max %.4f\n",
+                    std::string(particle_depth_name(depth)).c_str(), c.psnr_foreground,
+                    c.max_difference);
+        if (depth == ParticleDepth::kInverseCdf) {
+            inverse_cdf = c.psnr_foreground;
+        } else {
+            best_other = std::max(best_other, c.psnr_foreground);
+        }
+    }
+    // Measured at R = 256: inverse-cdf 46.9 dB; random 35.2, middle 27.5, entry 25.9, exit 24.3.
+    EXPECT_GT(inverse_cdf, best_other + 8.0);
+    EXPECT_GT(inverse_cdf, 43.9);
+}
+
+}  // namespace
+}  // namespace tr
