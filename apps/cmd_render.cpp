@@ -33,6 +33,7 @@ struct RenderArgs {
     std::string view = "iso";
     std::string colormap = "viridis";
     std::string write_scene_path;
+    std::vector<std::string> volumes;  // quick mode: more volumes, MESH:ARRAY each
 };
 
 bool is_scene_file(const std::string& path) {
@@ -61,7 +62,22 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
     SceneVolume volume;
     volume.mesh = std::filesystem::absolute(args.input);
     TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, pipeline.mesh(volume));
-    auto scene = make_quick_scene(volume.mesh, loaded->tets, options);
+    // More volumes in the same space: MESH:ARRAY each (the array after the last colon).
+    std::vector<std::shared_ptr<const LoadedMesh>> others;
+    std::vector<QuickVolume> more;
+    for (const std::string& spec : args.volumes) {
+        const auto colon = spec.rfind(':');
+        if (colon == std::string::npos || colon == 0 || colon + 1 == spec.size()) {
+            return make_error(ErrorCode::kInvalidArgument,
+                              "--volume takes MESH:ARRAY, not '" + spec + "'");
+        }
+        SceneVolume other;
+        other.mesh = std::filesystem::absolute(spec.substr(0, colon));
+        TR_TRY(std::shared_ptr<const LoadedMesh> mesh, pipeline.mesh(other));
+        more.push_back({other.mesh, &mesh->tets, spec.substr(colon + 1), -1, ""});
+        others.push_back(std::move(mesh));
+    }
+    auto scene = make_quick_scene(volume.mesh, loaded->tets, options, more);
     if (!scene.ok()) return with_where(scene.error(), args.input);
     return scene;
 }
@@ -77,6 +93,10 @@ int run_render(const RenderArgs& args) {
         return report_usage(set.error());
     }
     const bool scene_mode = is_scene_file(args.input);
+    if (scene_mode && !args.volumes.empty()) {
+        std::fprintf(stderr, "tetrender: --volume is for quick mode; a scene lists `volumes`\n");
+        return kExitUsage;
+    }
     if (!scene_mode && args.scalar.empty()) {
         std::fprintf(stderr,
                      "tetrender: rendering a mesh file needs --scalar NAME (or give a "
@@ -155,6 +175,9 @@ std::function<int()> add_render_command(CLI::App& app) {
                     "Quick mode: viridis (default), coolwarm, inferno, gray");
     cmd->add_option("--write-scene", args->write_scene_path,
                     "Quick mode: save the scene used, to edit and re-render");
+    cmd->add_option("--volume", args->volumes,
+                    "Quick mode: one more volume in the same space, MESH:ARRAY (repeatable; each "
+                    "with its own colour map over its own range, drawn fused)");
     return [args] { return run_render(*args); };
 }
 

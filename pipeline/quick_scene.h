@@ -40,4 +40,21 @@ struct QuickSceneOptions {
 Result<Scene> make_quick_scene(const std::filesystem::path& mesh_path, const TetMesh& mesh,
                                const QuickSceneOptions& options);
 
+// One more volume of a quick look at several meshes in one space.
+struct QuickVolume {
+    std::filesystem::path mesh_path;
+    const TetMesh* mesh = nullptr;
+    std::string scalar;
+    int component = -1;
+    std::string colormap;  // empty: the next of viridis, inferno, coolwarm, gray not yet used
+};
+
+// A scene of several volumes in one space (written with `volumes`): the first as above (its
+// scalar, component and colour map from `options`), each of `more` with its own array and
+// colour map over its own range, the camera framing the union of their bounds. Errors as
+// above, the message naming the volume's index when it is not the first.
+Result<Scene> make_quick_scene(const std::filesystem::path& mesh_path, const TetMesh& mesh,
+                               const QuickSceneOptions& options,
+                               const std::vector<QuickVolume>& more);
+
 }  // namespace tr
