@@ -1,6 +1,7 @@
 #include <mesh/tetrahedralize.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -66,33 +67,43 @@ std::vector<double> shortest_incident_edges(const UnstructuredMesh& in) {
     return local;
 }
 
+// Indices of `points` ordered by (x, y, z, index), compared lexicographically.
+std::vector<PointId> lexicographic_order(const std::vector<Vec3>& points) {
+    std::vector<PointId> order(points.size());
+    std::iota(order.begin(), order.end(), PointId{0});
+    std::sort(order.begin(), order.end(), [&](PointId a, PointId b) {
+        const Vec3& p = points[a];
+        const Vec3& q = points[b];
+        if (p.x != q.x) return p.x < q.x;
+        if (p.y != q.y) return p.y < q.y;
+        if (p.z != q.z) return p.z < q.z;
+        return a < b;
+    });
+    return order;
+}
+
+// Exact merging over the lexicographic order: equal points are neighbours in it.
+std::vector<PointId> merge_in_order(const std::vector<Vec3>& points,
+                                    const std::vector<PointId>& order) {
+    std::vector<PointId> representative(points.size());
+    std::iota(representative.begin(), representative.end(), PointId{0});
+    for (std::size_t i = 1; i < order.size(); ++i) {
+        if (points[order[i]] == points[order[i - 1]]) {
+            representative[order[i]] = representative[order[i - 1]];
+        }
+    }
+    return representative;
+}
+
 }  // namespace
 
 std::vector<PointId> find_coincident_points(const std::vector<Vec3>& points,
                                             double tolerance_fraction,
                                             const std::vector<double>& local_length) {
+    if (tolerance_fraction <= 0) return merge_in_order(points, lexicographic_order(points));
     const std::size_t n = points.size();
     std::vector<PointId> representative(n);
     std::iota(representative.begin(), representative.end(), PointId{0});
-    if (tolerance_fraction <= 0) {
-        std::vector<PointId> order(n);
-        std::iota(order.begin(), order.end(), PointId{0});
-        auto less = [&](PointId a, PointId b) {
-            const Vec3& p = points[a];
-            const Vec3& q = points[b];
-            if (p.x != q.x) return p.x < q.x;
-            if (p.y != q.y) return p.y < q.y;
-            if (p.z != q.z) return p.z < q.z;
-            return a < b;
-        };
-        std::sort(order.begin(), order.end(), less);
-        for (std::size_t i = 1; i < n; ++i) {
-            if (points[order[i]] == points[order[i - 1]]) {
-                representative[order[i]] = representative[order[i - 1]];
-            }
-        }
-        return representative;
-    }
     // Tolerant: hash points into cubes as large as the largest merge radius, compare with the
     // 27 cubes around; merge i into the lowest earlier point within its radius.
     std::vector<double> radius(n, 0.0);
@@ -208,10 +219,13 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
 
     // Merge coincident points, then keep only points used as corners (compacted, in order).
     std::vector<PointId> representative;
-    if (options.merge_points) {
-        std::vector<double> local;
-        if (options.merge_tolerance > 0) local = shortest_incident_edges(in);
-        representative = find_coincident_points(in.points, options.merge_tolerance, local);
+    std::vector<PointId> order;  // all points in lexicographic order, when merging exactly
+    if (options.merge_points && options.merge_tolerance <= 0) {
+        order = lexicographic_order(in.points);
+        representative = merge_in_order(in.points, order);
+    } else if (options.merge_points) {
+        representative =
+            find_coincident_points(in.points, options.merge_tolerance, shortest_incident_edges(in));
     } else {
         representative.resize(num_points);
         std::iota(representative.begin(), representative.end(), PointId{0});
@@ -236,6 +250,21 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
     }
     std::vector<Vec3> points(kept_points.size());
     for (std::size_t i = 0; i < kept_points.size(); ++i) points[i] = in.points[kept_points[i]];
+    // Each kept point's place in the lexicographic order of coordinates (x, then y, then z;
+    // index on ties, which only unmerged coincident points can have): the split compares
+    // these ranks, never the ids, so it does not depend on the numbering. Merged exactly, the
+    // kept points are the representatives, met in `order` as their groups are.
+    if (order.empty()) {
+        order = lexicographic_order(points);
+    } else {
+        std::size_t k = 0;
+        for (const PointId p : order) {
+            if (new_index[p] != kNoCell) order[k++] = new_index[p];
+        }
+        order.resize(k);
+    }
+    std::vector<PointId> rank(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) rank[order[i]] = static_cast<PointId>(i);
 
     // Split each cell by the pulling triangulation (see the header).
     std::vector<Tet> tets;
@@ -255,7 +284,9 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
         return !(std::abs(orient3d(a, b, c, d)) > tolerance * l * l * l);
     };
     std::vector<PointId> corner(12);
+    std::array<PointId, 12> corner_rank{};
     std::vector<Tet> cell_tets;
+    std::vector<std::uint8_t> tet_on_apex_face;  // per cell tet: from a face through the apex
     const std::size_t progress_step = std::max<std::size_t>(num_cells / 100, 1);
     for (std::size_t c = 0; c < num_cells; ++c) {
         if (c % progress_step == 0) {
@@ -272,37 +303,50 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
                       corner[4], corner[5], corner[7], corner[6]};
             type = CellType::kHexahedron;
         }
-        // Cone from `apex` over the faces not containing it; returns the summed signed volume
-        // (times 6) and whether the good tets all have that sign.
+        for (int k = 0; k < corners; ++k) corner_rank[k] = rank[corner[k]];
+        // Cone from `apex` over the cell's boundary triangles that do not contain it, each face
+        // fanned from its smallest point whatever the apex (so the split stays conforming);
+        // returns the summed signed volume (times 6) and whether the good tets all have that
+        // sign. From the smallest corner, every triangle of a face through the apex contains
+        // it. From another corner, a face through the apex may have triangles that do not:
+        // their tets fill the face's bend, and when one is flat (a planar face) that corner
+        // cannot be the apex without opening a crack.
         struct Cone {
             double volume = 0;
             std::size_t good = 0;
             bool consistent = true;
+            bool cracks = false;
         };
-        auto cone = [&](PointId apex) {
+        auto cone = [&](PointId apex, bool smallest) {
             cell_tets.clear();
+            tet_on_apex_face.clear();
             for (const std::vector<int>& face : faces_of(type)) {
                 bool has_apex = false;
                 for (int v : face) has_apex = has_apex || corner[v] == apex;
-                if (has_apex) continue;
+                if (has_apex && smallest) continue;  // fanned from the apex: nothing to cone
                 const int n = static_cast<int>(face.size());
                 int start = 0;
                 for (int i = 1; i < n; ++i) {
-                    if (corner[face[i]] < corner[face[start]]) start = i;
+                    if (corner_rank[face[i]] < corner_rank[face[start]]) start = i;
                 }
                 const PointId s = corner[face[start]];
+                if (has_apex && s == apex) continue;  // the whole fan contains the apex
                 for (int i = 1; i + 1 < n; ++i) {
                     const PointId b = corner[face[(start + i) % n]];
                     const PointId d = corner[face[(start + i + 1) % n]];
+                    if (has_apex && (b == apex || d == apex)) continue;
                     // (s, b, d) is outward; the apex is behind it: (s, d, b, apex) is positive.
                     cell_tets.push_back({s, d, b, apex});
+                    tet_on_apex_face.push_back(has_apex && s != b && s != d && b != d);
                 }
             }
             Cone result;
             int signs = 0;
-            for (Tet& t : cell_tets) {
+            for (std::size_t i = 0; i < cell_tets.size(); ++i) {
+                Tet& t = cell_tets[i];
                 if (degenerate(t)) {
                     t[0] = kNoCell;
+                    result.cracks = result.cracks || tet_on_apex_face[i];
                     continue;
                 }
                 const double v = orient3d(points[t[0]], points[t[1]], points[t[2]], points[t[3]]);
@@ -322,20 +366,27 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
                                         points[corner[3]]);
             }
         } else {
-            // The smallest-id corner first; a cell that is not convex (twisted, crushed) may
-            // need another corner to see all its faces. The faces' triangles stay the same
-            // whichever corner is the apex, so the split stays conforming.
-            std::vector<PointId> apexes(corner.begin(), corner.begin() + corners);
-            std::sort(apexes.begin(), apexes.end());
-            apexes.erase(std::unique(apexes.begin(), apexes.end()), apexes.end());
-            split = cone(apexes[0]);
-            for (std::size_t a = 1; a < apexes.size() && !split.consistent; ++a) {
-                const Cone other = cone(apexes[a]);
-                if (other.consistent && other.good > 0) split = other;
+            // The lexicographically smallest corner first, the others in that order after it:
+            // a cell that is not convex (twisted, crushed) may need another corner to see all
+            // its faces. The faces' triangles stay the same whichever corner is the apex.
+            int smallest = 0;
+            for (int k = 1; k < corners; ++k) {
+                if (corner_rank[k] < corner_rank[smallest]) smallest = k;
             }
+            split = cone(corner[smallest], true);
             if (!split.consistent) {
-                split = cone(apexes[0]);
-                ++report.num_tangled_cells;
+                std::vector<PointId> apexes(corner.begin(), corner.begin() + corners);
+                std::sort(apexes.begin(), apexes.end(),
+                          [&](PointId a, PointId b) { return rank[a] < rank[b]; });
+                apexes.erase(std::unique(apexes.begin(), apexes.end()), apexes.end());
+                for (std::size_t a = 1; a < apexes.size() && !split.consistent; ++a) {
+                    const Cone other = cone(apexes[a], false);
+                    if (other.consistent && other.good > 0 && !other.cracks) split = other;
+                }
+                if (!split.consistent) {
+                    split = cone(apexes[0], true);
+                    ++report.num_tangled_cells;
+                }
             }
         }
         const double cell_volume = split.volume;

@@ -3,12 +3,27 @@
 // hexahedra, voxels, wedges, pyramids (and the corners of quadratic cells, and pentagonal and
 // hexagonal prisms) so that every quad face shared by two cells is cut along the same diagonal.
 //
-// The split is the "pulling" triangulation: each polygonal face is fanned from its vertex of
-// smallest (merged) global index, and each cell is the cone from its smallest-index vertex over
-// the faces that do not contain it. A face's triangulation thus depends only on its own global
-// ids, so neighbours agree: no cracks, no T-junctions. For a quad this is the diagonal through
-// its smallest-index vertex. A non-convex cell (twisted or crushed) whose cone from that vertex
-// would mix orientations is coned from another corner instead, when one sees all its faces.
+// The split is the "pulling" triangulation over the lexicographic order of the (merged)
+// points' coordinates: x first, then y, then z. Each polygonal face is fanned from its
+// lexicographically smallest vertex, and each cell is the cone from its smallest corner over
+// the faces that do not contain it. A face's triangulation thus depends only on its own
+// vertices' coordinates, so neighbours agree: no cracks, no T-junctions. For a quad this is the
+// diagonal through its smallest vertex. A non-convex cell (twisted or crushed) whose cone from
+// that corner would mix orientations is coned from its next corner in the same order that sees
+// all its faces' triangles, those of the faces through that corner included (a corner on a
+// planar face fanned from another vertex would give a flat tet, leave a crack, and is passed
+// over); the faces' triangles never change with the apex. A cell no corner sees whole is coned
+// from its smallest corner anyway: its tets overlap, it is counted as tangled, and it stays
+// conforming.
+//
+// What this guarantees: the set of tets, each as its four corners' coordinates with the input
+// cell it came from (hence its cell fields), does not depend on how points or cells are
+// numbered, nor on how the cells are cut into pieces: a .pvtu's pieces (or MPI ranks' parts)
+// split one by one, each with its own numbering, give exactly the whole file's tets, and the
+// faces across each cut match. Exceptions: exactly coincident points left distinct
+// (merge_points off) tie in the order, and the tie is broken by point index, so there the
+// split depends on the numbering; with a merge tolerance, a merged group takes the coordinates
+// of its lowest-index point, which depends on the numbering when the group is not one point.
 
 #include <core/progress.h>
 #include <core/result.h>
@@ -23,7 +38,8 @@ namespace tr {
 
 struct TetrahedralizeOptions {
     // Merge points with identical coordinates before splitting (Exodus block and .pvtu piece
-    // interfaces, O-grid seams). Off only to inspect a file as written.
+    // interfaces, O-grid seams). Off only to inspect a file as written: coincident points then
+    // tie in the split's coordinate order and are ordered by index (see above).
     bool merge_points = true;
     // 0: merge exactly equal points only. > 0: also merge points closer than this fraction
     // of the shortest edge at either point (e.g. 1e-6).

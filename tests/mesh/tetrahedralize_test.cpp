@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -13,23 +14,10 @@
 namespace tr {
 namespace {
 
+using testing::box_boundary_triangles;
 using testing::make_mixed_grid;
 using testing::MixedGridOptions;
-
-glm::dmat3 random_rotation_scale(std::mt19937& rng) {
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    glm::dmat3 m;
-    do {
-        for (int c = 0; c < 3; ++c)
-            for (int r = 0; r < 3; ++r) m[c][r] = (r == c ? 1.5 : 0.0) + 0.4 * u(rng);
-    } while (glm::determinant(m) < 0.2);
-    return m;
-}
-
-// Boundary triangles of an nx*ny*nz box grid split conformingly: two per boundary quad.
-std::size_t box_boundary_triangles(const MixedGridOptions& o) {
-    return 4u * static_cast<std::size_t>(o.nx * o.ny + o.ny * o.nz + o.nx * o.nz);
-}
+using testing::random_rotation_scale;
 
 TEST(Tetrahedralize, RandomMixedMeshesAreConformingAndConserveVolume) {
     for (std::uint32_t seed = 1; seed <= 25; ++seed) {
@@ -104,8 +92,7 @@ TEST(Tetrahedralize, MirroredMeshReportsInvertedCellsAndKeepsVolume) {
 
 TEST(Tetrahedralize, DuplicatedPointsAreMergedSoCellsBecomeNeighbours) {
     MixedGridOptions o;
-    o.duplicate_points = true;
-    o.p_tets = 0;  // tet boxes pick diagonals from the unmerged ids
+    o.duplicate_points = true;  // tet boxes too: their diagonals follow the coordinates
     const UnstructuredMesh input = make_mixed_grid(o);
     TetrahedralizeReport report;
     auto merged = tetrahedralize(input, {}, &report);
@@ -129,7 +116,7 @@ TEST(Tetrahedralize, DuplicatedPointsAreMergedSoCellsBecomeNeighbours) {
 TEST(Tetrahedralize, TolerantMergeJoinsNearlyCoincidentPoints) {
     MixedGridOptions o;
     o.duplicate_points = true;
-    o.p_tets = 0;
+    o.p_tets = 0;  // tet boxes' diagonals follow the unjittered points, the split's the jittered
     UnstructuredMesh input = make_mixed_grid(o);
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> jitter(-1e-9, 1e-9);
