@@ -703,9 +703,11 @@ ShadedSegment SegmentShader::exact(double s_front, double s_back, double length)
     if (!(length > 0)) return {Vec3f(0.0f), 0.0f};
     Vec3 color(0.0);
     double transparency = 1.0;
-    // One piece, from u0 to u1 (fractions of the segment), with no control point inside.
+    // One piece, from u0 to u1 (fractions of the segment), with no control point inside. Once
+    // the transparency is below kOpaque, what lies behind adds less than that: stop.
+    constexpr double kOpaque = 1e-7;
     auto piece = [&](double u0, double u1) {
-        if (!(u1 > u0)) return;
+        if (!(u1 > u0) || transparency < kOpaque) return;
         const double piece_length = (u1 - u0) * length;
         const double s0 = s_front + (s_back - s_front) * u0;
         const double s1 = s_front + (s_back - s_front) * u1;
@@ -719,6 +721,7 @@ ShadedSegment SegmentShader::exact(double s_front, double s_back, double length)
             const double alpha = -std::expm1(-tf_.extinction(s) * h);
             color += transparency * alpha * tf_.color(s);
             transparency *= 1.0 - alpha;
+            if (transparency < kOpaque) break;
         }
     };
     // Split where the scalar crosses a control point, in the order the ray meets them.

@@ -27,6 +27,9 @@ bool require_data() { return testing::require_shared_data(); }
 // Bounds per integrator against the reference, and of the default against exact: each the
 // measured foreground PSNR minus 3 dB, and the measured largest difference plus 0.001 (a
 // quarter of a level) for exact and the default, plus a tenth and 0.0005 for exp-texture.
+// Where two values are given they were measured over two builds (the cells split into tets
+// another way, the exact path's segment merge: exp-texture's error depends on the split), the
+// bound covering both.
 struct Bounds {
     ImageBounds exact, preintegrated, exp_texture, default_vs_exact;
 };
@@ -54,10 +57,10 @@ const Case kCases[] = {
       {87.4, 0.0011}}},  // default vs exact: measured 90.4 dB, 0.00015
     {"disk_out_ref/disk_out_ref.ex2",
      "Temp",
-     {{106.9, 0.001},    // exact: measured 109.9 dB, 2e-05
-      {94.7, 0.0011},    // default: measured 97.7 dB, 7e-05
-      {71.4, 0.0045},    // exp-texture: measured 74.4 dB, 0.00368
-      {93.9, 0.0011}}},  // default vs exact: measured 96.9 dB, 7e-05
+     {{106.2, 0.001},    // exact: measured 109.2-109.9 dB, 2e-05
+      {94.5, 0.0011},    // default: measured 97.5 dB, 8e-05
+      {71.2, 0.0045},    // exp-texture: measured 74.2 dB, 0.00312-0.00368
+      {93.7, 0.0011}}},  // default vs exact: measured 96.7 dB, 8e-05
     {"office/office.binary.vtk",
      "scalars",
      {{102.3, 0.001},    // exact: measured 105.3 dB, 3e-05
@@ -72,28 +75,28 @@ const Case kCases[] = {
       {103.4, 0.001}}},  // default vs exact: measured 106.4 dB, 3e-05
     {"combustor/combustor.vtu",
      "Density",
-     {{109.4, 0.001},   // exact: measured 112.4 dB, 2e-05
-      {96.0, 0.001},    // default: measured 99.0 dB, 4e-05
-      {69.9, 0.0031},   // exp-texture: measured 72.9 dB, 0.00233
-      {94.8, 0.001}}},  // default vs exact: measured 97.8 dB, 5e-05
+     {{107.3, 0.001},    // exact: measured 110.3-112.4 dB, 2e-05
+      {95.9, 0.001},     // default: measured 98.9 dB, 5e-05
+      {69.0, 0.0032},    // exp-texture: measured 72.0-72.9 dB, 0.00233-0.00242
+      {94.4, 0.0011}}},  // default vs exact: measured 97.4 dB, 6e-05
     {"can/can.vtu",
      "EQPS",
-     {{59.5, 0.0106},    // exact: measured 62.5 dB, 0.00957
-      {59.4, 0.0106},    // default: measured 62.4 dB, 0.00959
-      {59.6, 0.0106},    // exp-texture: measured 62.6 dB, 0.00915 (2 levels)
+     {{101.5, 0.0011},   // exact: measured 104.5 dB, 0.0001
+      {98.2, 0.0011},    // default: measured 101.2 dB, 0.00011
+      {81.1, 0.0011},    // exp-texture: measured 84.1 dB, 0.00051
       {100.7, 0.001}}},  // default vs exact: measured 103.7 dB, 5e-05
     {"bluntfin/bluntfin.vtu",
      "Density",
-     {{116.2, 0.001},   // exact: measured 119.2 dB, 1e-05
+     {{115.9, 0.001},   // exact: measured 118.9 dB, 1e-05
       {100.0, 0.001},   // default: measured 103.0 dB, 2e-05
-      {82.2, 0.0012},   // exp-texture: measured 85.2 dB, 0.00063
+      {82.0, 0.0012},   // exp-texture: measured 85.0 dB, 0.00063
       {99.2, 0.001}}},  // default vs exact: measured 102.2 dB, 3e-05
     {"prisms_penta_hexa/PentaHexa.vtk",
      "scalar1",
-     {{99.5, 0.001},     // exact: measured 102.5 dB, 3e-05
-      {83.7, 0.0013},    // default: measured 86.7 dB, 0.00033
-      {52.2, 0.0147},    // exp-texture: measured 55.2 dB, 0.01292 (3 levels)
-      {83.1, 0.0013}}},  // default vs exact: measured 86.1 dB, 0.00033
+     {{99.0, 0.001},     // exact: measured 102.0-102.5 dB, 3e-05
+      {83.7, 0.0014},    // default: measured 86.7 dB, 0.00033-0.00036
+      {50.9, 0.0194},    // exp-texture: measured 53.9-55.2 dB, 0.01292-0.01719 (5 levels)
+      {83.1, 0.0014}}},  // default vs exact: measured 86.1 dB, 0.00033-0.00036
     {"cylinder_tets_quadratic/CylinderQuadratic.vtk",
      "pressure",
      {{112.3, 0.001},    // exact: measured 115.3 dB, 2e-05

@@ -209,15 +209,17 @@ TEST(Renderer, OpticallyThickCellsAgainstTheReference) {
     const CameraFrame persp(looking_at({7, -5, 6}, {1.5, 1.5, 1.5}, false, 1), 160, 160);
     const CameraFrame ortho(looking_at({-3, 6, 1}, {1.5, 1.5, 1.5}, true, 2.8), 160, 160);
     // The old (front, back, length) table: 45.0 and 46.5 dB, 29 and 24 levels off.
+    // *exp-texture takes each tet's colour at its chord's mean scalar, so its error depends on
+    // how the grid's cells are split into tets: measured over two splits.
     check_integrators(fx, tf, persp, "thick_persp",
                       {{120.0, 0.0002},  // measured 127.0 dB, 0.000002
                        {78.7, 0.0015},   // measured 81.8 dB, 0.00104
-                       {29.8, 0.26}},    // measured 32.8 dB, 0.230 (59 levels)
+                       {27.9, 0.40}},    // measured 31.0-32.8 dB, 0.23-0.34 (87 levels)*
                       {78.7, 0.0015});   // measured 81.8 dB, 0.00104
     check_integrators(fx, tf, ortho, "thick_ortho",
                       {{120.0, 0.0002},  // measured 125.7 dB, 0.000002
                        {81.7, 0.0015},   // measured 84.8 dB, 0.00108
-                       {31.3, 0.21}},    // measured 34.4 dB, 0.183 (47 levels)
+                       {31.3, 0.21}},    // measured 34.4-36.6 dB, 0.12-0.18 (47 levels)*
                       {81.7, 0.0015});   // measured 84.8 dB, 0.00108
 }
 
