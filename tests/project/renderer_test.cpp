@@ -331,6 +331,8 @@ TEST(Renderer, OpaqueGeometryCutsEverySegmentAtItsDepth) {
         in.opaque_depth = &layer.depth;
         const Image image = render_projected_tetrahedra(in);
         const Vec3 normal = glm::normalize(Vec3(-0.3, 0, 1));
+        double worst = 0.0;
+        int checked = 0;
         for (int j = 0; j < 64; ++j) {
             for (int i = 0; i < 64; ++i) {
                 const Ray r = frame.pixel_ray(i, j);
@@ -346,10 +348,17 @@ TEST(Renderer, OpaqueGeometryCutsEverySegmentAtItsDepth) {
                 const Vec3 expected =
                     Vec3(1.0, 0.7, 0.2) * alpha + (1 - alpha) * plane_color * lambert;
                 for (int k = 0; k < 3; ++k) {
-                    ASSERT_NEAR(image.at(i, j)[k], expected[k], 1.0 / 255) << i << "," << j;
+                    worst = std::max(worst, std::abs(image.at(i, j)[k] - expected[k]));
                 }
+                ++checked;
             }
         }
+        std::printf(
+            "[ opaque_plane_%s ] largest difference from the closed form %.2g over %d "
+            "pixels\n",
+            parallel ? "ortho" : "persp", worst, checked);
+        EXPECT_GT(checked, 500);  // 1936 orthographic, 622 in perspective
+        EXPECT_LT(worst, 2e-6);   // measured 2.1e-7 and 1.6e-7 (single precision)
     }
 }
 
