@@ -94,11 +94,12 @@ TEST(SortConvexified, NonConvexMeshesBecomeExact) {
         bool (*skip)(int, int, int);
         int n, nz;
     };
-    // (An extruded L is not among them: its bare MPVO order measured no violation in 2.6M
-    // pairs over 168 views, outside and inside, so it cannot show a change.)
+    // (An extruded L and a notched box are not among them: their bare MPVO orders measured no
+    // violation, the L in 2.6M pairs over 168 views, the notch (a 4x4x3 box less a 2x2x2 corner,
+    // since the split is ordered by coordinates) in 168 views outside and 42 inside, so they
+    // cannot show a change.)
     const Case cases[] = {
         {"Z", [](int i, int j, int) { return (i >= 2 && j < 2) || (i < 3 && j >= 3); }, 5, 2},
-        {"notch", [](int i, int j, int k) { return i >= 2 && j >= 2 && k >= 1; }, 4, 3},
         {"ring", [](int i, int j, int) { return i >= 1 && i <= 3 && j >= 1 && j <= 3; }, 5, 2},
         {"U", [](int i, int j, int) { return i >= 2 && j >= 2 && i < 5 && j < 5; }, 6, 2},
     };
@@ -117,7 +118,7 @@ TEST(SortConvexified, NonConvexMeshesBecomeExact) {
         const Tally inside = check_views(filled, SortMethod::kMpvo, 4, 12, true);
         std::printf("[ %s ] pairs %zu: mpvo %zu violations bare, %zu convexified\n", c.name,
                     with.pairs, without.violations, with.violations);
-        // Bare, MPVO is wrong along some rays (measured 434 Z, 33 notch, 1409 ring, 1559 U);
+        // Bare, MPVO is wrong along some rays (measured 543 Z, 1526 ring, 1317 U);
         // convexified, along none.
         EXPECT_GT(without.violations, 0u);
         EXPECT_GT(with.pairs, 1000u);
