@@ -391,7 +391,7 @@ TEST(RendererDeathTest, PreconditionsAreChecked) {
     bad = in;
     bad.order = bad_order;
     EXPECT_DEATH(render_projected_tetrahedra(bad),
-                 "internal check failed: TR_CHECK\\(in\\.order\\[i\\] < num_real\\)");
+                 "internal check failed: TR_CHECK\\(t < num_real\\)");
     // Opaque buffers of another size than the image.
     const Image small_color(16, 24);
     bad = in;
