@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <pipeline/loaded_mesh.h>
 
 namespace tr::viewer {
@@ -18,6 +19,11 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
     const int frames = std::max(options.frames, 1);
     const Vec3 axis = CameraFrame(home, width, height).up();
     FlowControls* flow = view.flow_shown() ? view.flow() : nullptr;
+    // Particle-based: each frame waits for its view's first batch, the last for all of them.
+    const bool particles = view.particle_mode() && !flow;
+    const int target = view.particles().target();
+    const int batch = std::min(vs.pbvr.batch_for(view.mode()), target);
+    std::optional<PbvrFrame> shown;
     double frame_ms = 0, sort_ms = 0, classify_ms = 0, raster_ms = 0;
     std::size_t sorts = 0, drawn = 0;
     std::uint64_t last_seen = 0;
@@ -36,6 +42,12 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
         if (flow) {
             flow->show_layers(last ? flow->num_layers() : static_cast<std::size_t>(i + 1));
             stats = view.render_flow(frame);
+        } else if (particles) {
+            shown = view.draw_particles(camera, width, height, last ? target : batch);
+            if (!shown || !shown->error.empty()) {
+                return apps::report_error(make_error(
+                    ErrorCode::kInternal, shown ? shown->error : "no particle-based picture"));
+            }
         } else {
             const SortedOrder order = view.current_order(camera, last);
             if (order.view_id != last_seen) {
@@ -71,6 +83,19 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
                       grown.grow_ms);
         flow_text = text;
         cells = grown.volume->mesh.num_tets();
+    }
+    if (particles) {
+        const PbvrFrame& f = *shown;
+        std::fprintf(stderr,
+                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), %s: %d "
+                     "repetitions in %d batches (%d a batch), %.1f ms/batch mean, setup %.1f "
+                     "ms, %zu particles, %d repetitions from kept particles, retarget %zu "
+                     "cells, %zu cells, %dx%d\n",
+                     frames, frame_ms / frames, 1000.0 * frames / frame_ms,
+                     view_method_name(view.mode()).data(), f.repetitions, f.batches, batch,
+                     f.mean_batch_ms, f.setup_ms, f.particles, f.reused_repetitions,
+                     f.retargeted_cells, f.cells, width, height);
+        return apps::kExitOk;
     }
     std::fprintf(stderr,
                  "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), sort %.1f ms mean "

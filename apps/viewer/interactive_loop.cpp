@@ -22,6 +22,8 @@ int run_interactive(GLFWwindow* window, VolumeView& view, ViewerPanel& panel,
     bool screenshot_requested = false;  // kept while minimized
     FlowControls* flow = view.flow();
     if (view.flow_shown()) flow->request();
+    // A batch of particles accumulated: wake the loop to show it.
+    view.set_wake([] { glfwPostEmptyEvent(); });
     while (!glfwWindowShouldClose(window)) {
         // (Tests: a flow volume being grown is waited for.)
         if (exit_after_frames > 0 && frames++ >= exit_after_frames &&
@@ -32,13 +34,17 @@ int run_interactive(GLFWwindow* window, VolumeView& view, ViewerPanel& panel,
         const InputActions actions = input.poll(camera);
         screenshot_requested |= actions.screenshot;
         if (actions.toggle_panel) panel.toggle_panel();
+        if (actions.next_method) {
+            view.set_mode(static_cast<ViewMethod>((static_cast<int>(view.mode()) + 1) % 3));
+        }
         if (actions.toggle_keys) {
             panel.toggle_keys();
             std::printf("%s\n", kKeyHelp);
         }
-        // The pre-integrated table takes 0.1-0.3 s: rebuilt when a drag ends, not during it.
-        if (view.tf_dirty() &&
-            (!panel.dragging() || view.integrator() == Integrator::kExpTexture)) {
+        // The pre-integrated table takes 0.1-0.3 s: rebuilt when a drag ends, not during it
+        // (the particle-based modes rebuild during drags: their worker takes the latest).
+        if (view.tf_dirty() && (!panel.dragging() || view.integrator() == Integrator::kExpTexture ||
+                                view.particle_mode())) {
             view.rebuild_transfer_function();
         }
         int fw = 0, fh = 0;

@@ -44,6 +44,7 @@ InputActions ViewerInput::poll(CameraControl& camera) {
         if (pressed(GLFW_KEY_R)) camera.reset();
         if (pressed(GLFW_KEY_S)) actions.screenshot = true;
         if (pressed(GLFW_KEY_P)) actions.toggle_panel = true;
+        if (pressed(GLFW_KEY_M)) actions.next_method = true;
         const bool shift = glfwGetKey(window_, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
                            glfwGetKey(window_, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
         // '?' is shift + slash on most layouts.

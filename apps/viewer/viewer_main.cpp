@@ -18,6 +18,7 @@
 #include <imgui/backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -36,6 +37,12 @@ struct Args {
     std::string size;
     std::string integrator = "exp-texture";
     std::string sort = "auto";
+    // How the picture is made (overriding the scene's `method` key) and the particle-based
+    // modes' accumulation.
+    std::string method;
+    int repetitions = 0;
+    std::optional<std::int64_t> seed;
+    int batch = 0;
     std::string colormap;
     double opacity = 0;
     double unit_distance = 0;
@@ -108,6 +115,13 @@ int run(const Args& args) {
         return apps::kExitUsage;
     }
     options.sort = *method;
+    if (!args.method.empty() && !view_method_named(args.method)) {
+        std::fprintf(stderr,
+                     "tetrender-view: unknown --method '%s' (projected-tetrahedra, pbvr-image, "
+                     "pbvr-object)\n",
+                     args.method.c_str());
+        return apps::kExitUsage;
+    }
     if (!args.size.empty()) {
         if (!apps::parse_image_size(args.size, options.width, options.height)) {
             std::fprintf(stderr,
@@ -130,6 +144,11 @@ int run(const Args& args) {
     auto loaded = load_viewer_scene(options);
     if (!loaded.ok()) return apps::report_error(loaded.error());
     ViewerScene vs = std::move(loaded).value();
+    MethodArgs method_args{args.method, args.repetitions, args.seed, args.batch, headless};
+    auto resolved = resolve_method(*vs.pipeline, vs.scene, method_args);
+    if (!resolved.ok()) return apps::report_error(resolved.error());
+    vs.method = resolved->method;
+    vs.pbvr = resolved->pbvr;
     if (!vs.sort.note.empty())
         std::fprintf(stderr, "tetrender-view: note: %s\n", vs.sort.note.c_str());
     if (vs.scene.flow_volume && vs.scene.flow_volume->context) {
@@ -218,9 +237,10 @@ int run(const Args& args) {
 int main(int argc, char** argv) {
     tr::viewer::Args args;
     CLI::App app{
-        "tetrender-view: interactive projected-tetrahedra viewer (OpenGL 3.3). Keys: left drag "
-        "rotate, right drag / wheel zoom, middle drag / shift+left pan, r reset, s screenshot, "
-        "p panel, ? keys, Esc quit."};
+        "tetrender-view: interactive viewer: projected tetrahedra (OpenGL 3.3) or particle-based "
+        "volume rendering (CPU, progressive). Keys: left drag rotate, right drag / wheel zoom, "
+        "middle drag / shift+left pan, r reset, m next method, s screenshot, p panel, ? keys, "
+        "Esc quit."};
     app.add_option("input", args.input, "Scene file (.json) or mesh file")->required();
     app.add_option("--scalar", args.scalar,
                    "Mesh mode: the array to show (default: the first point array, else the "
@@ -234,6 +254,20 @@ int main(int argc, char** argv) {
     app.add_option("--size", args.size, "Window / image size WxH (default 960x600 or the scene's)");
     app.add_option("--integrator", args.integrator, "exp-texture (default) or preintegrated");
     app.add_option("--sort", args.sort, "auto (default), mpvo, mpvonc, exact, centroid");
+    app.add_option("--method", args.method,
+                   "projected-tetrahedra (default, OpenGL), pbvr-image or pbvr-object (particles "
+                   "on the CPU, accumulated while the camera is still; default: the scene's)");
+    app.add_option("--repetitions", args.repetitions,
+                   "Particle-based: repetitions to accumulate (default: the scene's, else 64 "
+                   "headless, 1024 interactively)")
+        ->check(CLI::Range(1, tr::viewer::kMaxRepetitions));
+    app.add_option("--seed", args.seed,
+                   "Particle-based: the seed (batch b of a view uses seed + b; default: the "
+                   "scene's, else 1)");
+    app.add_option("--batch", args.batch,
+                   "Particle-based: repetitions per batch (default 16 for pbvr-image, 4 for "
+                   "pbvr-object)")
+        ->check(CLI::Range(1, tr::viewer::kMaxBatch));
     app.add_option("--colormap", args.colormap,
                    "viridis, coolwarm, inferno, gray (default: the scene's colours, or viridis)");
     app.add_option(

@@ -74,22 +74,33 @@ void ViewerPanel::draw_panel() {
         vs.edit.unit_distance = std::max(static_cast<double>(unit), 1e-30);
         view_.mark_dirty();
     }
-    // Sort and integrator.
-    const SortMethod methods[] = {SortMethod::kMpvo, SortMethod::kMpvoNonConvex,
-                                  SortMethod::kCentroid};
-    if (ImGui::BeginCombo("sort", sort_method_name(view_.method()).data())) {
-        for (SortMethod m : methods) {
-            if (ImGui::Selectable(sort_method_name(m).data(), m == view_.method()))
-                view_.set_method(m);
+    // How the picture is made; projected tetrahedra's sort and integrator.
+    if (ImGui::BeginCombo("method", view_method_name(view_.mode()).data())) {
+        for (ViewMethod m :
+             {ViewMethod::kProjectedTetrahedra, ViewMethod::kPbvrImage, ViewMethod::kPbvrObject}) {
+            if (ImGui::Selectable(view_method_name(m).data(), m == view_.mode())) view_.set_mode(m);
         }
         ImGui::EndCombo();
     }
-    if (ImGui::BeginCombo("integrator", integrator_name(view_.integrator()).data())) {
-        for (Integrator i : {Integrator::kExpTexture, Integrator::kPreintegrated}) {
-            if (ImGui::Selectable(integrator_name(i).data(), i == view_.integrator()))
-                view_.set_integrator(i);
+    if (view_.particle_mode()) {
+        draw_particle_section();
+    } else {
+        const SortMethod methods[] = {SortMethod::kMpvo, SortMethod::kMpvoNonConvex,
+                                      SortMethod::kCentroid};
+        if (ImGui::BeginCombo("sort", sort_method_name(view_.method()).data())) {
+            for (SortMethod m : methods) {
+                if (ImGui::Selectable(sort_method_name(m).data(), m == view_.method()))
+                    view_.set_method(m);
+            }
+            ImGui::EndCombo();
         }
-        ImGui::EndCombo();
+        if (ImGui::BeginCombo("integrator", integrator_name(view_.integrator()).data())) {
+            for (Integrator i : {Integrator::kExpTexture, Integrator::kPreintegrated}) {
+                if (ImGui::Selectable(integrator_name(i).data(), i == view_.integrator()))
+                    view_.set_integrator(i);
+            }
+            ImGui::EndCombo();
+        }
     }
     if (ImGui::CollapsingHeader("flow volume", ImGuiTreeNodeFlags_DefaultOpen)) {
         if (FlowControls* flow = view_.flow()) {
@@ -107,16 +118,49 @@ void ViewerPanel::draw_panel() {
     if (view_.flow_shown()) {
         ImGui::Text("no sort (one dye colour)  classify %.1f ms  raster %.1f ms", stats.classify_ms,
                     stats.raster_ms);
+        if (view_.particle_mode()) {
+            ImGui::TextDisabled("(the flow volume is drawn by projected tetrahedra)");
+        }
+    } else if (view_.particle_mode()) {
+        ImGui::Text("particles on the CPU (%zu cells)", vs.sort.mesh().num_real_tets());
     } else {
         ImGui::Text("sort %.1f ms (%s)  classify %.1f ms  raster %.1f ms", view_.sort_ms(),
                     view_.order_current() ? "current" : "previous view", stats.classify_ms,
                     stats.raster_ms);
     }
-    ImGui::Text("cells %zu, drawn %zu", stats.cells, stats.cells_drawn);
+    if (!view_.particle_mode() || view_.flow_shown())
+        ImGui::Text("cells %zu, drawn %zu", stats.cells, stats.cells_drawn);
     if (!view_.status().empty())
         ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", view_.status().c_str());
     ImGui::TextDisabled("? lists the keys");
     ImGui::End();
+}
+
+void ViewerPanel::draw_particle_section() {
+    PbvrWorker& worker = view_.particles();
+    int target = worker.target();
+    if (ImGui::InputInt("repetitions", &target, 64, 256)) worker.set_target(target);
+    const std::optional<PbvrFrame>& f = view_.particles_shown();
+    const int batch = worker.settings().batch_for(view_.mode());
+    if (!f) {
+        ImGui::Text("accumulating: the first batch of %d repetitions", batch);
+        return;
+    }
+    if (!f->error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", f->error.c_str());
+    ImGui::Text("%d repetitions accumulated%s", f->repetitions,
+                !view_.particles_current() ? " (previous view)"
+                : f->finished              ? " (done)"
+                                           : "");
+    ImGui::Text("batch %.1f ms (mean %.1f, %d batches of %d)", f->batch_ms, f->mean_batch_ms,
+                f->batches, batch);
+    ImGui::Text("%zu particles, seed %llu + batch", f->particles,
+                static_cast<unsigned long long>(worker.settings().seed));
+    if (f->method == ViewMethod::kPbvrObject) {
+        ImGui::Text("kept: %d particle sets, %.1f MB", f->kept_sets,
+                    static_cast<double>(f->kept_bytes) / (1 << 20));
+        ImGui::Text("reused %d repetitions; retarget regenerated %zu of %zu cells",
+                    f->reused_repetitions, f->retargeted_cells, f->cells);
+    }
 }
 
 }  // namespace tr::viewer

@@ -1,6 +1,7 @@
 #pragma once
 // The viewer's Dear ImGui overlay: the panel (array, colour map, opacity curve, unit distance,
-// sort, integrator, the flow volume's section, timings), the seed outline and the keys window.
+// method, sort and integrator or the particle-based accumulation, the flow volume's section,
+// timings), the seed outline and the keys window.
 
 #include <apps/viewer/opacity_editor.h>
 #include <apps/viewer/volume_view.h>
@@ -29,6 +30,8 @@ class ViewerPanel {
 
   private:
     void draw_panel();
+    // The particle-based modes: the target, what is accumulated, batch times, kept particles.
+    void draw_particle_section();
 
     VolumeView& view_;
     OpacityEditor opacity_;

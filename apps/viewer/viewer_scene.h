@@ -3,6 +3,7 @@
 // transfer function the panel edits, the camera and the opaque surfaces. Loaded from a scene
 // file or, for a mesh file, made the way `tetrender render` quick mode makes its scene.
 
+#include <apps/viewer/view_method.h>
 #include <apps/viewer/viewer_flow.h>
 #include <core/result.h>
 #include <mesh/surface_mesh.h>
@@ -55,6 +56,10 @@ struct ViewerScene {
     // The domain for flow volumes: only when the mesh has a 3-component point array. A flow
     // volume to show at start is scene.flow_volume (the scene's key or the command line's).
     std::unique_ptr<FlowDomain> flow;
+    // How the picture is made at start (resolve_method: --method or the scene's `method` key)
+    // and the particle-based modes' settings.
+    ViewMethod method = ViewMethod::kProjectedTetrahedra;
+    PbvrSettings pbvr;
 
     SceneVolume& volume() { return scene.volumes[0]; }
     const SceneVolume& volume() const { return scene.volumes[0]; }

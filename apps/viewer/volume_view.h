@@ -1,14 +1,17 @@
 #pragma once
 // What the viewer draws each frame: the mesh's volume in the sort worker's latest order for the
-// view, or the flow volume; the transfer function rebuilt when the panel changed it; the frame
-// redrawn only when something it shows changed; and which GL renderer holds the last frame.
+// view, or the particle-based picture the PBVR worker has accumulated for it, or the flow
+// volume; the transfer function rebuilt when the panel changed it; the frame redrawn only when
+// something it shows changed; and which GL renderer holds the last frame.
 
 #include <apps/viewer/flow_controls.h>
+#include <apps/viewer/pbvr_worker.h>
 #include <apps/viewer/sort_worker.h>
 #include <apps/viewer/viewer_scene.h>
 #include <project/gl/gl_renderer.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -39,11 +42,40 @@ class VolumeView {
     gl::GlFrameStats render_flow(const CameraFrame& frame);
 
     // Interactive: draws `camera`'s frame at width x height unless the last one shows the same
-    // (view, order, transfer function, size, flow layers). Returns whether the view is idle:
-    // its own order drawn, or every grown flow layer shown and nothing growing.
+    // (view, order, transfer function, size, flow layers; in a particle-based mode: the same
+    // accumulated picture). Returns whether the view is idle: its own order drawn, every grown
+    // flow layer shown and nothing growing, or (particle-based) the latest accumulated picture
+    // shown (the next batch wakes the loop through set_wake).
     bool draw(const Camera& camera, int width, int height);
     // Forgets the last frame: the next draw() draws.
-    void invalidate() { drawn_.reset(); }
+    void invalidate() {
+        drawn_.reset();
+        pbvr_shown_.reset();
+    }
+
+    // How the picture is made. The particle-based modes draw the mesh's volume and the opaque
+    // surfaces on the CPU (PbvrWorker); a shown flow volume is drawn by projected tetrahedra in
+    // every mode.
+    ViewMethod mode() const { return mode_; }
+    void set_mode(ViewMethod mode);  // the next draw() draws
+    bool particle_mode() const { return mode_ != ViewMethod::kProjectedTetrahedra; }
+
+    // The particle-based picture of `camera` at width x height: asks the worker for this view
+    // when it (or the method, scalar or transfer function) differs from the last one asked,
+    // which restarts the accumulation; with `min_repetitions` > 0 waits until that many are
+    // accumulated (or the accumulation finished); shows the latest accumulated picture when it
+    // is newer than the one shown. Returns the frame shown (none yet: nullopt).
+    std::optional<PbvrFrame> draw_particles(const Camera& camera, int width, int height,
+                                            int min_repetitions);
+    PbvrWorker& particles() { return pbvr_; }
+    // The particle-based frame shown last, and whether it answers the latest view asked for.
+    const std::optional<PbvrFrame>& particles_shown() const { return pbvr_shown_; }
+    bool particles_current() const {
+        return pbvr_shown_ && pbvr_shown_->request_id == pbvr_requested_id_;
+    }
+    // Called from the worker thread when a batch is accumulated (glfwPostEmptyEvent); set
+    // before the first draw.
+    void set_wake(std::function<void()> wake) { pbvr_.set_on_frame(std::move(wake)); }
 
     // The renderer holding the last frame (read_image, blit_to_default, overlay).
     gl::GlTetRenderer& active() { return *active_; }
@@ -66,10 +98,14 @@ class VolumeView {
     const gl::GlFrameStats& last_stats() const { return last_stats_; }
 
   private:
+    void update_gl_transfer_function();  // when gl_tf_stale_
+
     ViewerScene& vs_;
     gl::GlTetRenderer& renderer_;
     gl::GlTetRenderer* active_ = &renderer_;
     SortWorker worker_;
+    PbvrWorker pbvr_;
+    ViewMethod mode_;
     std::unique_ptr<FlowControls> flow_;
     std::optional<Camera> requested_;  // the view of the last request
     SortMethod method_, requested_method_ = SortMethod::kMpvo;
@@ -79,6 +115,21 @@ class VolumeView {
     double sort_ms_ = 0;
     bool tf_dirty_ = false;
     int tf_version_ = 0;
+    bool gl_tf_stale_ = false;  // the GL renderer's textures are of an older function
+    int scalar_version_ = 0;
+    // What the PBVR worker was last asked for, and the copies it draws from.
+    struct ParticleKey {
+        ViewMethod method;
+        Camera camera;
+        int width, height, tf_version, scalar_version;
+        bool operator==(const ParticleKey& o) const;
+    };
+    std::optional<ParticleKey> pbvr_key_;
+    std::uint64_t pbvr_requested_id_ = 0;
+    std::shared_ptr<const TransferFunction> pbvr_tf_;
+    std::shared_ptr<const std::vector<float>> pbvr_scalar_;
+    int pbvr_tf_version_ = -1, pbvr_scalar_version_ = -1;
+    std::optional<PbvrFrame> pbvr_shown_;
     std::string status_;
     gl::GlFrameStats last_stats_;
     // What the last interactive frame showed.

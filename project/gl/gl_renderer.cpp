@@ -54,8 +54,8 @@ Result<GlContextInfo> check_gl_context() {
 }
 
 struct GlTetRenderer::State {
-    GLuint volume_program = 0, opaque_program = 0, exact_program = 0;
-    GLuint exact_vao = 0;  // no attributes: the exact shader's quad comes from gl_VertexID
+    GLuint volume_program = 0, opaque_program = 0, exact_program = 0, image_program = 0;
+    GLuint exact_vao = 0;  // no attributes: the exact and image quads come from gl_VertexID
     GLuint volume_vao = 0, volume_vbo = 0, volume_ibo = 0;
     std::size_t ibo_cells = 0;  // cells the index buffer covers
     GLuint opaque_vao = 0, opaque_vbo = 0;
@@ -63,6 +63,8 @@ struct GlTetRenderer::State {
     Bounds3 opaque_bounds;
     GLuint tf_tex = 0, exp_tex = 0, pre_tex = 0;
     GLuint color_tex = 0, t_tex = 0, depth_tex = 0;
+    GLuint image_tex = 0;  // show_image's picture
+    int image_width = 0, image_height = 0;
     GLuint opaque_fbo = 0, volume_fbo = 0;
     int width = 0, height = 0;
     const TetMesh* mesh = nullptr;
@@ -117,6 +119,7 @@ Result<std::unique_ptr<GlTetRenderer>> GlTetRenderer::create() {
     TR_TRY(s.volume_program, detail::link_program({kVolumeVs}, {kShade, kVolumeFs}, "volume"));
     TR_TRY(s.opaque_program, detail::link_program({kOpaqueVs}, {kOpaqueFs}, "opaque"));
     TR_TRY(s.exact_program, detail::link_program({kExactVs}, {kShade, kExactFs}, "exact"));
+    TR_TRY(s.image_program, detail::link_program({kImageVs}, {kImageFs}, "image"));
     glGenVertexArrays(1, &s.exact_vao);
     glGenVertexArrays(1, &s.volume_vao);
     glGenBuffers(1, &s.volume_vbo);
@@ -143,6 +146,9 @@ Result<std::unique_ptr<GlTetRenderer>> GlTetRenderer::create() {
     glGenTextures(1, &s.tf_tex);
     glGenTextures(1, &s.exp_tex);
     glGenTextures(1, &s.pre_tex);
+    glGenTextures(1, &s.image_tex);
+    glUseProgram(s.image_program);
+    glUniform1i(glGetUniformLocation(s.image_program, "u_image"), 0);
     // Samplers: 0 transfer function, 1 exp texture, 2 pre-integrated, 3 opaque ray parameter.
     for (const GLuint p : {s.volume_program, s.exact_program}) {
         glUseProgram(p);
@@ -165,12 +171,14 @@ GlTetRenderer::~GlTetRenderer() {
     glDeleteProgram(s.volume_program);
     glDeleteProgram(s.opaque_program);
     glDeleteProgram(s.exact_program);
+    glDeleteProgram(s.image_program);
     const GLuint arrays[3] = {s.volume_vao, s.opaque_vao, s.exact_vao};
     glDeleteVertexArrays(3, arrays);
     const GLuint buffers[3] = {s.volume_vbo, s.volume_ibo, s.opaque_vbo};
     glDeleteBuffers(3, buffers);
-    const GLuint textures[6] = {s.tf_tex, s.exp_tex, s.pre_tex, s.color_tex, s.t_tex, s.depth_tex};
-    glDeleteTextures(6, textures);
+    const GLuint textures[7] = {s.tf_tex, s.exp_tex,   s.pre_tex,  s.color_tex,
+                                s.t_tex,  s.depth_tex, s.image_tex};
+    glDeleteTextures(7, textures);
     const GLuint fbos[2] = {s.opaque_fbo, s.volume_fbo};
     glDeleteFramebuffers(2, fbos);
 }
@@ -456,6 +464,38 @@ GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const Ce
     glFinish();
     stats.raster_ms = ms_since(raster_start);
     return stats;
+}
+
+void GlTetRenderer::show_image(const Image& image) {
+    State& s = *state_;
+    const int w = image.width, h = image.height;
+    if (w <= 0 || h <= 0) return;
+    s.resize(w, h);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, s.image_tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    static_assert(sizeof(Vec3f) == 3 * sizeof(float), "Image pixels are packed RGB floats");
+    if (w != s.image_width || h != s.image_height) {
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, w, h, 0, GL_RGB, GL_FLOAT, image.pixels.data());
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+        s.image_width = w, s.image_height = h;
+    } else {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGB, GL_FLOAT, image.pixels.data());
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, s.volume_fbo);
+    glViewport(0, 0, w, h);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(s.image_program);
+    glUniform1i(glGetUniformLocation(s.image_program, "u_height"), h);
+    glBindVertexArray(s.exact_vao);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 Image GlTetRenderer::read_image() const {

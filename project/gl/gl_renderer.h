@@ -92,6 +92,12 @@ class GlTetRenderer {
     GlFrameStats render(const CameraFrame& camera, std::span<const CellId> order,
                         const Vec3& background);
 
+    // Makes `image` (row 0 at the top) the frame, as a textured quad over the offscreen
+    // framebuffer (resized to the image's size), each pixel its own texel: what read_image,
+    // blit_to_default and overlays then see. For pictures made elsewhere (the viewer's
+    // particle-based modes, on the CPU). Cost: one upload of 12 bytes a pixel and one draw.
+    void show_image(const Image& image);
+
     // The last frame as a float image (row 0 at the top), read with glReadPixels.
     Image read_image() const;
 

@@ -15,6 +15,7 @@
 #include <tests/support/image_check.h>
 #include <tests/viewer/viewer_fixtures.h>
 #include <tests/viewer/viewer_runner.h>
+#include <tests/viewer/viewer_test_scene.h>
 
 #include <gtest/gtest.h>
 
@@ -36,49 +37,11 @@ using testing::require_xvfb;
 using testing::run_viewer;
 using testing::shell_quote;
 
-// A cube [-1, 1]^3 of n^3 cells, each split into 6 tets around its main diagonal (Freudenthal:
-// conforming across cells), with a smooth scalar "blob"; a closed cylinder (r 0.3, |z| < 0.6)
-// as an .off file; and the scene file that draws both.
-struct TestScene {
-    std::string dir, mesh, scene, cylinder;
-};
-
-TestScene make_test_scene(int n = 14) {
-    TestScene t;
-    t.dir = testing::make_temp_dir();
-    TetMesh mesh = testing::freudenthal_box(n, n, n, Vec3(-1.0), Vec3(1.0));
-    std::vector<float> blob;
-    for (const Vec3& p : mesh.points()) {
-        const double r2 = glm::dot(p - Vec3(0.2, -0.1, 0.1), p - Vec3(0.2, -0.1, 0.1));
-        blob.push_back(static_cast<float>(std::exp(-2.0 * r2) + 0.25 * std::sin(3 * p.x)));
-    }
-    EXPECT_TRUE(mesh.add_point_field(make_float_field("blob", 1, blob)).ok());
-    t.mesh = t.dir + "/cube.vtu";
-    EXPECT_TRUE(write_vtu(mesh, t.mesh).ok());
-    // The cylinder as OFF.
-    const SurfaceMesh cylinder = make_cylinder_surface(0.3, -0.6, 0.6, 24);
-    t.cylinder = t.dir + "/cylinder.off";
-    testing::write_off(cylinder, t.cylinder);
-    t.scene = t.dir + "/scene.json";
-    std::ofstream scene(t.scene);
-    scene << R"({
-  "mesh": "cube.vtu",
-  "scalar": "blob",
-  "transfer_function": {
-    "color": [[-0.25, 0.1, 0.2, 0.9], [0.5, 0.2, 0.9, 0.4], [1.2, 1.0, 0.6, 0.1]],
-    "opacity": [[-0.25, 0.0], [0.4, 0.15], [1.2, 0.6]],
-    "unit_distance": 0.4
-  },
-  "camera": {"position": [2.6, -3.4, 2.0], "focal_point": [0, 0, 0], "view_up": [0, 0, 1],
-             "view_angle": 35},
-  "image": {"width": 240, "height": 180, "background": [0.05, 0.05, 0.08]},
-  "opaque": [{"file": "cylinder.off", "color": [0.9, 0.8, 0.7]}]
-})";
-    return t;
-}
+using testing::make_test_scene;
+using testing::TestScene;
 
 // The scene's background (make_test_scene): the foreground is what differs from it.
-const Vec3f kBackground(0.05f, 0.05f, 0.08f);
+const Vec3f kBackground = testing::kTestBackground;
 
 using testing::cpu_picture;
 using testing::ImageBounds;

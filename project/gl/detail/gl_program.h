@@ -18,6 +18,8 @@ extern const char* const kExactVs;
 extern const char* const kExactFs;
 extern const char* const kOpaqueVs;
 extern const char* const kOpaqueFs;
+extern const char* const kImageVs;
+extern const char* const kImageFs;
 }  // namespace glsl
 
 // Links a program of a vertex and a fragment stage, each compiled from `#version 330 core`

@@ -1,0 +1,131 @@
+#pragma once
+// The viewer's particle-based modes in a worker thread: the library's PBVR (project/pbvr_image.h,
+// project/pbvr_object.h) renders the requested view a batch of repetitions at a time on the CPU,
+// each batch with its own seed, and the batches are accumulated in floating point while the view
+// stays; a new request (camera, size, scalar, transfer function or method changed) restarts the
+// accumulation after the batch in progress. The window never waits for it: it shows the latest
+// accumulated picture.
+//
+// O-PBVR keeps the particles of a view's first batches (ObjectParticleSet, up to
+// PbvrSettings::max_kept_bytes): when a new request differs only in its transfer function, or
+// turns an orthographic camera (ObjectParticleSet::reusable_for), the kept particles are drawn
+// again (after retarget() for a new function) instead of being generated anew; a perspective
+// camera that moves, a new scalar or a new size generates them again.
+
+#include <apps/viewer/view_method.h>
+#include <core/camera.h>
+#include <core/image.h>
+#include <mesh/tet_mesh.h>
+#include <project/opaque_geometry.h>
+#include <project/transfer_function.h>
+
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace tr::viewer {
+
+// The view to accumulate.
+struct PbvrRequest {
+    ViewMethod method = ViewMethod::kPbvrImage;  // kPbvrImage or kPbvrObject
+    Camera camera;
+    int width = 0, height = 0;                         // the picture, >= 1 each
+    std::shared_ptr<const std::vector<float>> scalar;  // one per mesh point
+    std::uint64_t scalar_version = 0;                  // changes whenever `scalar` does
+    std::shared_ptr<const TransferFunction> tf;
+    std::uint64_t tf_version = 0;  // changes whenever `tf` does
+    Vec3 background{0.0};
+};
+
+// The accumulation so far of one request.
+struct PbvrFrame {
+    std::shared_ptr<const Image> image;  // the mean of the repetitions so far
+    std::uint64_t request_id = 0;        // the request it answers
+    ViewMethod method = ViewMethod::kPbvrImage;
+    int repetitions = 0;        // accumulated
+    int batches = 0;            // rendered for this request
+    double batch_ms = 0;        // the last batch: rendering and accumulating
+    double mean_batch_ms = 0;   // over this request's batches
+    double setup_ms = 0;        // before the first batch: opaque layer, shader, retargets
+    std::size_t particles = 0;  // drawn (pbvr-image) or kept and generated (pbvr-object)
+    // pbvr-object: repetitions re-rendered from kept particles (not generated for this
+    // request), the cells retarget() regenerated in a kept particle set (the largest count
+    // over the sets), the cells, and the bytes of particles kept.
+    int reused_repetitions = 0;
+    std::size_t retargeted_cells = 0;
+    std::size_t cells = 0;
+    std::size_t kept_bytes = 0;
+    int kept_sets = 0;
+    bool finished = false;  // reached the target: the worker rests until the next request
+    std::string error;      // the batch failed (out of memory): nothing more for this request
+};
+
+class PbvrWorker {
+  public:
+    // `mesh` (its real tets are drawn) and the surfaces `opaque` points to must outlive the
+    // worker. `longest_edge`: the mesh's (cpu_renderer.h), for pbvr-image's shader.
+    PbvrWorker(const TetMesh& mesh, std::vector<OpaqueSurface> opaque, double longest_edge,
+               PbvrSettings settings);
+    ~PbvrWorker();  // waits for the batch in progress
+    PbvrWorker(const PbvrWorker&) = delete;
+    PbvrWorker& operator=(const PbvrWorker&) = delete;
+
+    // Asks for `request`'s view: it replaces a request not yet started, and the accumulation in
+    // progress stops after its current batch. Returns the request's id (increasing).
+    std::uint64_t request(PbvrRequest request);
+
+    // Where accumulation stops (clamped to [1, kMaxRepetitions]); raising it resumes a finished
+    // accumulation, lowering it finishes it after the current batch. No restart.
+    void set_target(int repetitions);
+    int target() const;
+
+    // The latest accumulated picture, if any (of the latest request or an older one).
+    std::optional<PbvrFrame> latest() const;
+
+    // Blocks until the frame of `request_id` has at least `repetitions` (or the accumulation
+    // finished or failed), or a later request has a frame; returns that frame.
+    PbvrFrame wait_for(std::uint64_t request_id, int repetitions);
+
+    // Called from the worker thread after each batch is published (e.g. glfwPostEmptyEvent, to
+    // wake the window loop). Set before the first request.
+    void set_on_frame(std::function<void()> on_frame) { on_frame_ = std::move(on_frame); }
+
+    const PbvrSettings& settings() const { return settings_; }
+
+  private:
+    struct Job;
+    void run();
+    void begin(Job& job);
+    void run_batch(Job& job, int target);  // one batch towards `target` repetitions
+    void publish(Job& job);
+
+    const TetMesh& mesh_;
+    const std::vector<OpaqueSurface> opaque_;
+    const double longest_edge_;
+    const PbvrSettings settings_;
+    std::function<void()> on_frame_;
+
+    mutable std::mutex mutex_;
+    std::condition_variable wake_, done_;
+    std::optional<std::pair<PbvrRequest, std::uint64_t>> pending_;
+    std::optional<PbvrFrame> latest_;
+    std::uint64_t next_id_ = 0;
+    int target_;
+    bool stop_ = false;
+
+    // Worker thread only: O-PBVR's kept particles and pbvr-image's shader.
+    struct KeptBatch;
+    std::vector<KeptBatch> kept_;
+    std::uint64_t kept_scalar_version_ = 0;
+    struct ShaderCache;
+    std::unique_ptr<ShaderCache> shader_;
+    std::thread thread_;  // last: started when the rest is ready
+};
+
+}  // namespace tr::viewer

@@ -1,0 +1,74 @@
+#pragma once
+// How the viewer makes its picture: projected tetrahedra in OpenGL (the default), or
+// particle-based volume rendering by the library on the CPU (pbvr-image, pbvr-object), and the
+// particle-based modes' settings, from the command line or a scene file's `method` key.
+
+#include <core/result.h>
+#include <project/pbvr_image.h>
+#include <project/pbvr_object.h>
+#include <project/scene.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <pipeline/pipeline.h>
+#include <string>
+#include <string_view>
+
+namespace tr::viewer {
+
+enum class ViewMethod { kProjectedTetrahedra, kPbvrImage, kPbvrObject };
+
+// "projected-tetrahedra", "pbvr-image", "pbvr-object": the scene file's method names.
+std::string_view view_method_name(ViewMethod method);
+std::optional<ViewMethod> view_method_named(std::string_view name);
+
+// Repetitions accumulated when neither the command line nor the scene gives a number: headless
+// as `tetrender render` draws the scene (the pipeline's default), interactively until the view
+// is good (accumulation stops there).
+inline constexpr int kDefaultHeadlessRepetitions = 64;
+inline constexpr int kDefaultInteractiveRepetitions = 1024;
+inline constexpr int kMaxRepetitions = 1 << 20;
+inline constexpr int kMaxBatch = 1024;
+
+// The particle-based modes' settings (both kept, so that the panel can switch between them).
+struct PbvrSettings {
+    int repetitions = kDefaultInteractiveRepetitions;  // accumulation stops here (>= 1)
+    int batch = 0;             // repetitions per batch (0: the method's default, below)
+    std::uint64_t seed = 1;    // batch b of a view renders with seed + b
+    ImagePbvrOptions image;    // depth, stratified (repetitions and seed: per batch)
+    ObjectPbvrOptions object;  // subpixel_level, sampling (repetitions and seed: per batch)
+    // O-PBVR: the particles of the first batches of a view are kept (ObjectParticleSet) up to
+    // this many bytes, to re-render after a transfer-function edit or an orthographic rotation.
+    std::size_t max_kept_bytes = std::size_t{512} << 20;
+
+    // The batch size for `method`: `batch`, else 16 for pbvr-image (a batch's cost is mostly
+    // the segments on the pixel rays, the same for 1 or 16 repetitions) and 4 for pbvr-object
+    // (its cost is per repetition: 4 keeps a batch short).
+    int batch_for(ViewMethod method) const;
+};
+
+// What the command line says (each overrides the scene's `method` key).
+struct MethodArgs {
+    std::string method;   // empty: the scene's method, else projected-tetrahedra
+    int repetitions = 0;  // 0: the scene's, else the default for `headless`
+    std::optional<std::int64_t> seed;
+    int batch = 0;  // 0: the method's default
+    bool headless = false;
+};
+
+struct ResolvedMethod {
+    ViewMethod method = ViewMethod::kProjectedTetrahedra;
+    PbvrSettings pbvr;
+};
+
+// The method and settings for `scene` (its `method` key, if any) and the command line. The
+// scene's own method keys (pbvr-image's depth and stratified, pbvr-object's subpixel_level and
+// sampling) are checked as `tetrender render` checks them (Pipeline::check) and kept; a
+// command-line method other than the scene's drops them. `pipeline` only checks. Errors:
+// kInvalidArgument for an unknown --method, a method the viewer does not draw (naming the three it
+// does), the pipeline's errors for the scene's method keys.
+Result<ResolvedMethod> resolve_method(const Pipeline& pipeline, const Scene& scene,
+                                      const MethodArgs& args);
+
+}  // namespace tr::viewer
