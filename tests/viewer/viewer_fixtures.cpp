@@ -1,4 +1,3 @@
-#include <io/write_image.h>
 #include <project/scene.h>
 #include <tests/viewer/viewer_fixtures.h>
 
@@ -51,14 +50,6 @@ void write_off(const SurfaceMesh& surface, const std::string& path) {
     for (const auto& tri : surface.triangles) {
         off << "3 " << tri[0] << " " << tri[1] << " " << tri[2] << "\n";
     }
-}
-
-void write_diff(const Image& a, const Image& b, const std::string& path) {
-    Image diff(a.width, a.height);
-    for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
-        diff.pixels[i] = glm::abs(a.pixels[i] - b.pixels[i]) * 4.0f;
-    }
-    (void)write_png(diff, path);
 }
 
 Image cpu_picture(const std::string& scene_path, Integrator integrator) {

@@ -17,9 +17,6 @@ TetMesh freudenthal_box(int nx, int ny, int nz, const Vec3& lo, const Vec3& hi);
 // Writes a triangle surface as an .off file.
 void write_off(const SurfaceMesh& surface, const std::string& path);
 
-// Writes |a - b| x 4 as a PNG, to look at when a comparison fails.
-void write_diff(const Image& a, const Image& b, const std::string& path);
-
 // The CPU renderer's picture of a scene file (sorted with --sort auto, drawn over its opaque
 // surfaces), as `tetrender render` draws it.
 Image cpu_picture(const std::string& scene_path, Integrator integrator);
