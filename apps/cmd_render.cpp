@@ -151,8 +151,9 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("-o,--output", args->output, "Output image (.png, or .pfm for floats)")
         ->required();
     cmd->add_option("--method", args->method,
-                    "Rendering method, overriding the scene's: projected-tetrahedra (default); "
-                    "pbvr-object, pbvr-image, splat are not implemented yet");
+                    "Rendering method, overriding the scene's: projected-tetrahedra (default; "
+                    "several volumes by the exact segment merge), pbvr-image, pbvr-object "
+                    "(particles: --repetitions, --seed); splat is not implemented yet");
     cmd->add_option("--repetitions", args->repetitions,
                     "Stochastic methods: ensemble size (>= 1), overriding the scene's")
         ->check(CLI::Range(1, 1 << 20));
