@@ -1,24 +1,17 @@
-// tetrender demo: the built-in scene, flow past a cylinder standing in a box, rendered with the
-// cylinder opaque.
+// tetrender demo: the built-in scenes (pipeline/demo_scene.h), flow past a cylinder standing in
+// a box rendered with the cylinder opaque; --flowvol grows dye through it, --fused adds a heat
+// plume on its own hexahedral grid in the same space.
 #include <apps/cli_common.h>
 #include <apps/commands.h>
-#include <core/config.h>
 #include <io/write_image.h>
 #include <io/write_vtu.h>
-#include <project/opaque_geometry.h>
 
-#include <pipeline/pipeline.h>
-#include <pipeline/quick_scene.h>
-
-#if TETRENDER_HAS_TETGEN
-#include <mesh/copyleft/cylinder_demo.h>
-#endif
-
-#include <nlohmann/json.hpp>
-
-#include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <optional>
+#include <pipeline/demo_scene.h>
+#include <pipeline/pipeline.h>
 
 namespace tr::apps {
 namespace {
@@ -27,100 +20,121 @@ struct DemoArgs {
     std::string output = "demo.png";
     std::string mesh_out;
     std::size_t tets = 200000;
+    std::size_t plume_tets = 0;
     int width = 960;
     int height = 540;
     std::string scalar = "vorticity";
     std::string integrator = "preintegrated";
+    std::string method;
+    std::optional<int> repetitions;
+    std::optional<std::int64_t> seed;
+    std::string depth;
     bool stats = false;
     bool flowvol = false;
+    bool fused = false;
 };
 
+// Where --mesh-out puts the plume's tets: demo.vtu -> demo_plume.vtu.
+std::filesystem::path plume_mesh_path(const std::filesystem::path& mesh_out) {
+    std::filesystem::path path = mesh_out;
+    path.replace_filename(mesh_out.stem().string() + "_plume" + mesh_out.extension().string());
+    return path;
+}
+
 int run_demo(const DemoArgs& args) {
-#if TETRENDER_HAS_TETGEN
+    if (args.flowvol && args.fused) {
+        return report_usage(make_error(ErrorCode::kInvalidArgument,
+                                       "--flowvol and --fused are two different demos: pick one"));
+    }
     const auto integrator = integrator_named(args.integrator);
     if (!integrator.ok()) return report_usage(integrator.error());
+    RenderOptions render;
+    render.integrator = *integrator;
     if (const Status ok = check_output_path(args.output, {".png", ".pfm"}); !ok.ok()) {
         return report_usage(ok.error());
     }
-    const auto start = std::chrono::steady_clock::now();
-    CylinderDemoOptions options;
-    options.target_tets = args.tets;
-    auto mesh = make_cylinder_demo(options);
-    if (!mesh.ok()) return report_error(mesh.error());
-    const double generate_ms = ms_since(start);
-    std::printf(
-        "demo: flow past a cylinder standing in a box, meshed by TetGen in %.0f ms:\n"
-        "  %zu tets, %zu points; point arrays",
-        generate_ms, mesh->num_tets(), mesh->num_points());
-    for (const Field& f : mesh->point_fields()) std::printf(" %s", f.name.c_str());
-    std::printf("\n");
-    if (!args.mesh_out.empty()) {
-        const Status written = write_vtu(*mesh, args.mesh_out);
-        if (!written.ok()) return report_error(written.error());
-        std::printf("  wrote %s\n", args.mesh_out.c_str());
+    DemoOptions options;
+    options.kind = args.fused     ? DemoKind::kFused
+                   : args.flowvol ? DemoKind::kFlowVolume
+                                  : DemoKind::kVolume;
+    options.tets = args.tets;
+    options.plume_tets = args.plume_tets;
+    options.width = args.width;
+    options.height = args.height;
+    options.scalar = args.scalar;
+    auto made = make_demo_scene(options);
+    if (!made.ok()) return report_error(made.error());
+    DemoScene& demo = *made;
+    Scene& scene = demo.scene;
+    if (!args.method.empty() || args.repetitions || args.seed || !args.depth.empty()) {
+        MethodSpec method;
+        if (!args.method.empty()) method.name = args.method;
+        method.repetitions = args.repetitions;
+        method.seed = args.seed;
+        if (!args.depth.empty()) method.options["depth"] = args.depth;
+        scene.method = method;
     }
-    // The scene: the demo mesh handed over in memory, the cylinder opaque.
-    Scene scene;
-    SceneVolume volume;
-    volume.mesh = "demo";
-    volume.tets = std::make_shared<const TetMesh>(std::move(mesh).value());
-    volume.scalar = args.scalar;
-    scene.camera.position = Vec3(-4.2, -6.5, 4.4);
-    scene.camera.focal_point = Vec3(1.0, 0.0, -0.1);
-    scene.camera.view_up = Vec3(0, 0, 1);
-    scene.camera.view_angle = 38;
-    scene.width = args.width;
-    scene.height = args.height;
-    scene.background = Vec3(0.02, 0.02, 0.05);
-    OpaqueSpec cylinder;
-    cylinder.surface = std::make_shared<const SurfaceMesh>(make_cylinder_surface(
-        0.999 * options.cylinder_radius, -1, 1, cylinder_demo_sides(options)));
-    cylinder.color = Vec3(0.75, 0.75, 0.8);
-    scene.opaque.push_back(cylinder);
-    if (args.flowvol) {
-        // Dye released upstream of the cylinder, grown through the velocity field.
-        FlowVolumeSpec dye;
-        dye.vectors = "velocity";
-        dye.seed_center = Vec3(-2.0, 0.0, 0.0);
-        dye.seed_width = 1.6;
-        dye.seed_height = 1.2;
-        dye.seed_resolution = 32;
-        dye.steps = 60;
-        dye.dt = 0.08;
-        scene.flow_volume = dye;
-        volume.scalar = "vorticity";  // checked, not drawn
-    }
-    // The scalar's range under the inferno map, opacity up to 0.5 per twelfth of the diagonal.
-    QuickSceneOptions quick;
-    quick.scalar = volume.scalar;
-    quick.colormap = "inferno";
-    quick.max_opacity = 0.5;
-    quick.unit_distance = volume.tets->bounds().diagonal() / 12.0;
-    auto tf = make_quick_scene(volume.mesh, *volume.tets, quick);
-    if (!tf.ok()) return report_error(tf.error());
-    volume.transfer_function = tf->volumes[0].transfer_function;
-    scene.volumes.push_back(std::move(volume));
-
     PipelineOptions pipeline_options;
     pipeline_options.progress = terminal_progress();
     Pipeline pipeline(pipeline_options);
-    RenderOptions render;
-    render.integrator = *integrator;
+    if (const Status ok = pipeline.check(scene, render); !ok.ok()) {
+        return report_usage(ok.error());
+    }
+    std::printf(
+        "demo: flow past a cylinder standing in a box, meshed by TetGen, and its fields in %.0f "
+        "ms:\n  %zu tets, %zu points; point arrays",
+        demo.generate_ms, demo.flow->num_tets(), demo.flow->num_points());
+    for (const Field& f : demo.flow->point_fields()) std::printf(" %s", f.name.c_str());
+    std::printf("\n");
+    if (demo.plume) {
+        std::printf(
+            "  a heat plume in the same space, on its own grid: %zu hexahedra behind the "
+            "cylinder (%zu tets), point array temperature\n",
+            demo.plume_grid->num_cells(), demo.plume->num_tets());
+    }
+    if (!args.mesh_out.empty()) {
+        const Status written = write_vtu(*demo.flow, args.mesh_out);
+        if (!written.ok()) return report_error(written.error());
+        std::printf("  wrote %s\n", args.mesh_out.c_str());
+        if (demo.plume) {
+            const std::filesystem::path plume_path = plume_mesh_path(args.mesh_out);
+            const Status plume_written = write_vtu(*demo.plume, plume_path);
+            if (!plume_written.ok()) return report_error(plume_written.error());
+            std::printf("  wrote %s (the plume's tets; source_cell numbers its hexahedra)\n",
+                        plume_path.string().c_str());
+        }
+    }
+
     auto result = pipeline.render(scene, render);
     if (!result.ok()) return report_error(result.error());
     print_notes(result->notes);
     const Status written = write_image(result->image, args.output);
     if (!written.ok()) return report_error(written.error());
     const NamedStats& stats = result->stats;
+    const std::string& method = scene.method_name();
     if (args.flowvol) {
         std::printf(
             "  flow volume: dye through a 1.6 x 1.2 polygon upstream, %d layers, %zu tets "
             "grown in %.0f ms, rendered without sorting in %.0f ms\n",
             scene.flow_volume->steps, result->flow_volume->mesh.num_tets(), stats.number("grow_ms"),
             stats.number("render_ms"));
+    } else if (method != kDefaultMethod) {
+        const std::string what =
+            args.fused ? "the flow's '" + args.scalar + "' and the plume's temperature"
+                       : "'" + args.scalar + "'";
+        std::printf("  rendered %s by %s at %dx%d: %s %.0f ms\n", what.c_str(), method.c_str(),
+                    args.width, args.height, method == "pbvr-object" ? "particles" : "raster",
+                    stats.number(method == "pbvr-object" ? "generate_ms" : "raster_ms"));
+    } else if (args.fused) {
+        std::printf(
+            "  rendered the flow's '%s' (blue) and the plume's temperature (red) as one medium, "
+            "each pixel's segments of both meshes merged by depth (%s) at %dx%d: raster %.0f "
+            "ms\n",
+            args.scalar.c_str(), std::string(integrator_name(render.integrator)).c_str(),
+            args.width, args.height, stats.number("raster_ms"));
     } else {
         std::printf("  rendered '%s' (%s, sort %s%s) at %dx%d: sort %.0f ms, raster %.0f ms\n",
-                    args.scalar.c_str(), std::string(integrator_name(*integrator)).c_str(),
+                    args.scalar.c_str(), std::string(integrator_name(render.integrator)).c_str(),
                     stats.number("convexified") ? "MPVO on the convexified mesh" : "MPVO",
                     std::get<bool>(*stats.find("sort_exact")) ? ", exact" : "", args.width,
                     args.height, stats.number("sort_ms"), stats.number("raster_ms"));
@@ -128,17 +142,11 @@ int run_demo(const DemoArgs& args) {
     std::printf("  wrote %s\n", args.output.c_str());
     if (args.stats) {
         NamedStats all;
-        all.set("generate_ms", generate_ms);
+        all.set("generate_ms", demo.generate_ms);
         for (const auto& [key, value] : stats.entries()) all.set_value(key, value);
         print_stats(all);
     }
     return kExitOk;
-#else
-    (void)args;
-    return report_error(make_error(ErrorCode::kUnsupported,
-                                   "the demo mesh is made by TetGen: this build has none "
-                                   "(TETRENDER_WITH_TETGEN=OFF)"));
-#endif
 }
 
 }  // namespace
@@ -148,9 +156,14 @@ std::function<int()> add_demo_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "demo", "Render the built-in demo: flow with swirl past an opaque cylinder in a box");
     cmd->add_option("-o,--output", args->output, "Output image (default demo.png)");
-    cmd->add_option("--mesh-out", args->mesh_out, "Also write the demo mesh and fields (.vtu)");
+    cmd->add_option("--mesh-out", args->mesh_out,
+                    "Also write the demo mesh and fields (.vtu); with --fused the plume's tets "
+                    "too, next to it as NAME_plume.vtu");
     cmd->add_option("--tets", args->tets, "About how many tets (default 200000)")
         ->check(CLI::Range(1000, 20000000));
+    cmd->add_option("--plume-tets", args->plume_tets,
+                    "--fused: about how many tets the plume's grid splits into (default: --tets)")
+        ->check(CLI::Range(100, 20000000));
     cmd->add_option("--width", args->width, "Image width (default 960)")
         ->check(CLI::Range(1, 16384));
     cmd->add_option("--height", args->height, "Image height (default 540)")
@@ -158,9 +171,21 @@ std::function<int()> add_demo_command(CLI::App& app) {
     cmd->add_option("--scalar", args->scalar, "vorticity (default), velocity, pressure");
     cmd->add_option("--integrator", args->integrator,
                     "preintegrated (default), exact, exp-texture");
+    cmd->add_option("--method", args->method,
+                    "projected-tetrahedra (default; --fused: the exact segment merge), "
+                    "pbvr-image, pbvr-object");
+    cmd->add_option("--repetitions", args->repetitions, "Stochastic methods: ensemble size")
+        ->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--seed", args->seed, "Stochastic methods: random seed");
+    cmd->add_option("--depth", args->depth,
+                    "pbvr-image: where a particle lies on its segment: inverse-cdf (default), "
+                    "entry, middle, exit, random");
     cmd->add_flag("--stats", args->stats, "Print one JSON line of timings");
     cmd->add_flag("--flowvol", args->flowvol,
                   "Render a flow volume instead: dye released upstream of the cylinder");
+    cmd->add_flag("--fused", args->fused,
+                  "Two meshes in one space: the flow (blue) and a heat plume on its own "
+                  "hexahedral grid (red), drawn as one medium");
     return [args] { return run_demo(*args); };
 }
 

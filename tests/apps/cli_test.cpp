@@ -139,6 +139,47 @@ TEST(Cli, FlowvolGrowsAndRenders) {
     std::filesystem::remove_all(dir);
 }
 
+// demo --fused: two meshes written (the flow and the plume's tets, whose hexahedra fill
+// 4.35 x 3 x 1.9 behind the cylinder), drawn as one medium by the segment merge and by fused
+// particles; --flowvol with --fused is a usage error.
+TEST(Cli, DemoFusedWritesBothMeshesAndRenders) {
+    const std::string dir = make_temp_dir();
+    const std::string out = dir + "/fused.png", vtu = dir + "/demo.vtu";
+    auto run = run_cli("demo --fused --tets 5000 --width 96 --height 54 --stats -o " +
+                       shell_quote(out) + " --mesh-out " + shell_quote(vtu));
+    if (run.err.find("this build has none") != std::string::npos) {
+        GTEST_SKIP() << "built without TetGen";
+    }
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_TRUE(std::filesystem::exists(out));
+    const auto stats = nlohmann::json::parse(run.out.substr(run.out.rfind('{')));
+    EXPECT_EQ(stats["volumes"], 2);
+    EXPECT_EQ(stats["compositing"], "merged");
+    auto plume = run_cli("info --json " + shell_quote(dir + "/demo_plume.vtu"));
+    ASSERT_EQ(plume.exit_code, 0) << plume.err;
+    EXPECT_NEAR(nlohmann::json::parse(plume.out)["tetrahedralization"]["volume"].get<double>(),
+                4.35 * 3 * 1.9, 1e-9);
+    auto flow = run_cli("info --json " + shell_quote(vtu));
+    ASSERT_EQ(flow.exit_code, 0) << flow.err;
+    // The box 7.5 x 4 x 2 less the cylinder's prism (area 0.75 to 0.785 for 12 to 64 sides).
+    const double flow_volume =
+        nlohmann::json::parse(flow.out)["tetrahedralization"]["volume"].get<double>();
+    EXPECT_GT(flow_volume, 2 * (30 - 0.786));
+    EXPECT_LT(flow_volume, 2 * (30 - 0.75));
+    auto particles = run_cli(
+        "demo --fused --tets 5000 --width 96 --height 54 --method pbvr-image "
+        "--depth entry --repetitions 2 --stats -o " +
+        shell_quote(dir + "/entry.png"));
+    ASSERT_EQ(particles.exit_code, 0) << particles.err;
+    EXPECT_NE(particles.out.find("\"depth\":\"entry\""), std::string::npos) << particles.out;
+    EXPECT_EQ(run_cli("demo --fused --flowvol -o " + shell_quote(dir + "/x.png")).exit_code, 2);
+    EXPECT_EQ(run_cli("demo --fused --tets 5000 --method pbvr-image --depth deep -o " +
+                      shell_quote(dir + "/x.png"))
+                  .exit_code,
+              2);
+    std::filesystem::remove_all(dir);
+}
+
 // A .pvd series whose speed rises from 1 at t = 0 to 2 at t = 1: dye released at t = 0 for
 // 0.5 fills 0.25 x (0.5 + 0.125); a single file is not a series; running past t = 1 is an
 // error.
