@@ -66,19 +66,51 @@ Result<RenderResult> render_flow_volume(Pipeline& pipeline, const Scene& scene,
     return result;
 }
 
-// The brute-force reference ray caster: no sort, no opaque geometry.
+// The brute-force reference ray caster: no sort, no opaque geometry. Several volumes go by its
+// own path for them (project/reference_raycaster.h), one volume by the one-mesh path.
 Result<RenderResult> render_reference_picture(Pipeline& pipeline, const Scene& scene) {
-    const SceneVolume& volume = scene.volumes[0];
     RenderResult result;
-    TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, pipeline.mesh(volume));
-    add_load_stats(result.stats, *loaded);
-    TR_TRY(const std::vector<float> scalar, pipeline.scalar(volume, loaded->tets));
+    std::vector<std::shared_ptr<const LoadedMesh>> meshes;
+    std::vector<std::vector<float>> scalars;
+    double load_ms = 0, tetrahedralize_ms = 0;
+    std::size_t cells = 0;
+    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
+        const SceneVolume& volume = scene.volumes[v];
+        // With several volumes, errors say which.
+        auto name = [&](Error e) {
+            if (scene.volumes.size() > 1)
+                e.message = "volume " + std::to_string(v) + ": " + e.message;
+            return e;
+        };
+        auto loaded = pipeline.mesh(volume);
+        if (!loaded.ok()) return name(loaded.error());
+        std::shared_ptr<const LoadedMesh> mesh = std::move(loaded).value();
+        auto values = pipeline.scalar(volume, mesh->tets);
+        if (!values.ok()) return name(values.error());
+        load_ms += mesh->read_ms;
+        tetrahedralize_ms += mesh->tetrahedralize_ms;
+        cells += mesh->tets.num_real_tets();
+        meshes.push_back(std::move(mesh));
+        scalars.push_back(std::move(values).value());
+    }
+    result.stats.set("load_ms", load_ms);
+    result.stats.set("tetrahedralize_ms", tetrahedralize_ms);
+    const CameraFrame frame(scene.camera, scene.width, scene.height);
     const auto start = Clock::now();
-    result.image =
-        render_reference(loaded->tets, scalar, volume.transfer_function,
-                         CameraFrame(scene.camera, scene.width, scene.height), scene.background);
+    if (scene.volumes.size() == 1) {
+        result.image =
+            render_reference(meshes[0]->tets, scalars[0], scene.volumes[0].transfer_function, frame,
+                             scene.background);
+    } else {
+        std::vector<ReferenceVolume> volumes;
+        for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
+            volumes.push_back({&meshes[v]->tets, scalars[v], &scene.volumes[v].transfer_function});
+        }
+        result.image = render_reference(volumes, frame, scene.background);
+    }
     result.stats.set("raster_ms", ms_since(start));
-    result.stats.set("cells", loaded->tets.num_real_tets());
+    result.stats.set("cells", cells);
+    if (scene.volumes.size() > 1) result.stats.set("volumes", scene.volumes.size());
     result.stats.set("integrator", "reference");
     result.stats.set("width", scene.width);
     result.stats.set("height", scene.height);
@@ -178,10 +210,6 @@ class ProjectedTetrahedra final : public RenderMethod {
             return make_error(ErrorCode::kUnsupported,
                               "$.flow_volume: a flow volume grows through one mesh; this scene "
                               "has several volumes",
-                              scene.source);
-        }
-        if (options.reference && scene.volumes.size() > 1) {
-            return make_error(ErrorCode::kUnsupported, "the reference ray caster draws one volume",
                               scene.source);
         }
         if (options.reference && !scene.opaque.empty()) {
