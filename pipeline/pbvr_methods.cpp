@@ -203,7 +203,7 @@ class PbvrImage final : public RenderMethod {
     std::string_view name() const override { return "pbvr-image"; }
 
     Status check(const Scene& scene, const RenderOptions& options) const override {
-        TR_TRY_STATUS(only_keys(scene, name(), {"depth", "stratified"}));
+        TR_TRY_STATUS(only_keys(scene, name(), {"depth", "stratified", "control_variate"}));
         if (const MethodOption* o = option(scene, "depth")) {
             const auto* v = std::get_if<std::string>(o);
             if (!v || !parse_particle_depth(*v)) {
@@ -212,9 +212,11 @@ class PbvrImage final : public RenderMethod {
                                            "\"exit\" or \"random\"");
             }
         }
-        if (const MethodOption* o = option(scene, "stratified")) {
-            if (!std::holds_alternative<bool>(*o)) {
-                return method_option_error(scene, "stratified", "expected true or false");
+        for (const char* key : {"stratified", "control_variate"}) {
+            if (const MethodOption* o = option(scene, key)) {
+                if (!std::holds_alternative<bool>(*o)) {
+                    return method_option_error(scene, key, "expected true or false");
+                }
             }
         }
         return check_common(scene, options, name(), repetitions_of(scene));
@@ -234,6 +236,9 @@ class PbvrImage final : public RenderMethod {
         }
         if (const MethodOption* o = option(scene, "stratified")) {
             options.stratified = std::get<bool>(*o);
+        }
+        if (const MethodOption* o = option(scene, "control_variate")) {
+            options.control_variate = std::get<bool>(*o);
         }
         VolumeScene& ps = loaded.scene;
         ps.camera = &frame;
@@ -259,6 +264,7 @@ class PbvrImage final : public RenderMethod {
         s.set("repetitions", options.repetitions);
         s.set("depth", std::string(particle_depth_name(options.depth)));
         s.set("stratified", options.stratified);
+        s.set("control_variate", options.control_variate);
         s.set("seed", options.seed);
         s.set("threads", thread_count());
         s.set("width", scene.width);

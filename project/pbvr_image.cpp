@@ -148,6 +148,27 @@ Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& option
             }
         }
         total_fragments += fragments.size();
+        // The control variate's per-pixel sums (pbvr_image.h): the log of the transparency of
+        // all the pixel's segments, and their colours weighted by opacity.
+        thread_local std::vector<double> log_transparency, weight;
+        thread_local std::vector<Vec3> weighted_color;
+        thread_local std::vector<int> hits;
+        constexpr std::size_t kTilePixels = kFragmentTile * kFragmentTile;
+        if (options.control_variate) {
+            log_transparency.assign(kTilePixels, 0.0);
+            weight.assign(kTilePixels, 0.0);
+            weighted_color.assign(kTilePixels, Vec3(0.0));
+            hits.assign(kTilePixels, 0);
+            for (std::size_t i = 0; i < fragments.size(); ++i) {
+                const Fragment& f = fragments[i];
+                const Vec3 c = mean_colors ? Vec3(mean_color[i])
+                                           : volumes[f.volume].volume->tf->color(
+                                                 0.5 * (static_cast<double>(f.s_in) + f.s_out));
+                log_transparency[f.pixel] += std::log1p(-alpha[i]);
+                weight[f.pixel] += alpha[i];
+                weighted_color[f.pixel] += alpha[i] * c;
+            }
+        }
         auto global_pixel = [&](const Fragment& f) {
             const int x = rays.x0 + f.pixel % kFragmentTile, y = rays.y0 + f.pixel / kFragmentTile;
             return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + x;
@@ -236,6 +257,7 @@ Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& option
                             total += back;
                             continue;
                         }
+                        if (options.control_variate) ++hits[local];
                         const std::uint32_t i = static_cast<std::uint32_t>(e);
                         if (mean_colors) {
                             total += Vec3(mean_color[i]);
@@ -257,9 +279,20 @@ Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& option
             for (int x = rays.x0; x <= rays.x1; ++x) {
                 const std::size_t local =
                     static_cast<std::size_t>(y - rays.y0) * kFragmentTile + (x - rays.x0);
-                image.at(x, y) = Vec3f(static_cast<float>(sum[local * 3] / repetitions),
-                                       static_cast<float>(sum[local * 3 + 1] / repetitions),
-                                       static_cast<float>(sum[local * 3 + 2] / repetitions));
+                Vec3 mean(sum[local * 3], sum[local * 3 + 1], sum[local * 3 + 2]);
+                mean /= static_cast<double>(repetitions);
+                if (options.control_variate && weight[local] > 0) {
+                    // The fraction of repetitions with a particle has a known expectation,
+                    // 1 - (the transparency of all the segments): its deviation times the
+                    // expected colour change it brings (approximated by the segments' colours
+                    // weighted by opacity, less what lies behind) is taken out.
+                    const double expected_hits = -std::expm1(log_transparency[local]);
+                    const double deviation =
+                        static_cast<double>(hits[local]) / repetitions - expected_hits;
+                    const Vec3 beta = weighted_color[local] / weight[local] - Vec3(behind.at(x, y));
+                    mean -= deviation * beta;
+                }
+                image.at(x, y) = Vec3f(mean);
             }
         }
     });

@@ -26,6 +26,15 @@
 // expectation: the same expected picture, less noise, and no depth to draw). It comes from the
 // volume's shader when one is given (VolumeData::shader: the pre-integrated table, within
 // half an 8-bit level of the exact integral); otherwise the particle's colour is drawn.
+//
+// Also beyond the paper — a control variate: whether a repetition has any particle on a pixel
+// is the largest part of the noise where the volume is half transparent, and its probability is
+// known without an order, 1 - T with T the product of (1 - alpha) over the pixel's segments. The
+// picture is mean(colour) - beta (mean(has a particle) - (1 - T)), with beta per pixel the
+// segments' colours weighted by their opacities less the colour behind: beta depends on no
+// random number, so the estimator stays unbiased whatever beta is, and the closer beta is to the
+// mean colour the particles bring, the less noise is left (none for a uniform colour).
+// `control_variate = false` gives the plain mean.
 
 #include <project/pbvr_common.h>
 #include <project/pbvr_sampling.h>
@@ -38,7 +47,8 @@ struct ImagePbvrOptions {
     int repetitions = 64;    // pictures averaged (>= 1)
     std::uint64_t seed = 1;  // the same seed gives the same picture, whatever the thread count
     ParticleDepth depth = ParticleDepth::kInverseCdf;
-    bool stratified = true;  // stratify the repetitions of each segment (above)
+    bool stratified = true;       // stratify the repetitions of each segment (above)
+    bool control_variate = true;  // take out the known part of the noise (above)
 };
 
 struct ImagePbvrStats {

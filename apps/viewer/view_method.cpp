@@ -76,6 +76,9 @@ Result<ResolvedMethod> resolve_method(const Pipeline& pipeline, const Scene& sce
         if (const MethodOption* o = option(*spec, "stratified")) {
             pbvr.image.stratified = std::get<bool>(*o);
         }
+        if (const MethodOption* o = option(*spec, "control_variate")) {
+            pbvr.image.control_variate = std::get<bool>(*o);
+        }
         if (const MethodOption* o = option(*spec, "subpixel_level")) {
             pbvr.object.subpixel_level = static_cast<int>(std::get<std::int64_t>(*o));
         }
