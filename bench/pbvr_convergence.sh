@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Convergence of particle-based rendering, measured: for one scene, the exact reference
-# (`--integrator reference`), then pbvr-image (stratified, the default), pbvr-image with the
-# paper's independent repetitions, and pbvr-object, each at R = 1, 4, 16, 64, 256, 1024
+# (`--integrator reference`), then pbvr-image (stratified with the control variate, the
+# default), without each of the two, with neither (the paper's independent repetitions), and
+# pbvr-object, each at R = 1, 4, 16, 64, 256, 1024
 # repetitions: foreground PSNR against the reference and the time per repetition. Prints a
 # markdown table (docs/benchmarks.md keeps the results).
 #   bench/pbvr_convergence.sh SCENE.json [BUILD_DIR] [WORK_DIR] [REPETITIONS...]
@@ -33,22 +34,31 @@ fi
 echo
 echo "| method | R | PSNR (dB) | ms per repetition | total ms |"
 echo "|---|---|---|---|---|"
-for variant in "pbvr-image" "pbvr-image independent" "pbvr-object"; do
+# pbvr-image's default (stratified repetitions and the control variate), each part alone
+# removed, the paper's plain independent repetitions, and pbvr-object.
+for variant in "pbvr-image" "pbvr-image stratified only" "pbvr-image independent" \
+               "pbvr-image paper" "pbvr-object"; do
   method=${variant%% *}
-  # The independent variant: the same scene with "stratified": false.
+  # The variants: the same scene with the method's own keys set.
   case "$variant" in
-    *independent) python3 - "$scene" "$work/independent.json" <<'PY'
+    *"stratified only") keys='{"stratified": true, "control_variate": false}' ;;
+    *independent) keys='{"stratified": false, "control_variate": true}' ;;
+    *paper) keys='{"stratified": false, "control_variate": false}' ;;
+    *) keys='' ;;
+  esac
+  input="$scene"
+  if [ -n "$keys" ]; then
+    python3 - "$scene" "$work/variant.json" "$keys" <<'PY'
 import json, os, sys
 s = json.load(open(sys.argv[1]))
 base = os.path.dirname(os.path.abspath(sys.argv[1]))
 for v in s.get("volumes", [s]):
     v["mesh"] = os.path.join(base, v["mesh"])
-s["method"] = {"name": "pbvr-image", "stratified": False}
+s["method"] = dict(name="pbvr-image", **json.loads(sys.argv[3]))
 json.dump(s, open(sys.argv[2], "w"))
 PY
-      input="$work/independent.json" ;;
-    *) input="$scene" ;;
-  esac
+    input="$work/variant.json"
+  fi
   for r in "${reps[@]}"; do
     out="$work/${method}_$r.pfm"
     stats=$("$tetrender" render "$input" --method "$method" --repetitions "$r" --seed 1 -o "$out" --stats)
