@@ -189,9 +189,10 @@ TEST(FusedPbvr, InverseCdfBeatsTheOtherDepthChoicesOnTwoCrossingTets) {
             best_other = std::max(best_other, c.psnr_foreground);
         }
     }
-    // Measured at R = 256: inverse-cdf 46.9 dB; random 35.2, middle 27.5, entry 25.9, exit 24.3.
+    // Measured at R = 256: inverse-cdf 47.7 dB (46.9 without the control variate); random 35.2,
+    // middle 27.5, entry 25.9, exit 24.3.
     EXPECT_GT(inverse_cdf, best_other + 8.0);
-    EXPECT_GT(inverse_cdf, 43.9);
+    EXPECT_GT(inverse_cdf, 46.2);
 }
 
 }  // namespace
