@@ -77,10 +77,14 @@ TEST_P(PbvrRealData, BothMethodsConvergeOnTheProjectedTetrahedraPicture) {
         run = testing::run_cli(args + testing::shell_quote(out));
         ASSERT_EQ(run.exit_code, 0) << method << ": " << run.err;
         const Image image = testing::read_pfm(out);
-        // 64 repetitions: measured 32.6 to 42.7 dB (pbvr-image), 26.3 to 38.1 (pbvr-object)
-        // over these scenes; the bound is the lowest minus 3 dB.
+        // 64 repetitions: measured 40.9 to 66.9 dB, largest difference up to 16 levels
+        // (pbvr-image; 32.6 to 42.7 dB before its control variate), 26.3 to 39.4 dB, up to 122
+        // levels (pbvr-object) over these scenes; the bounds are the lowest minus 3 dB and the
+        // largest difference plus a quarter.
+        const bool image_space = std::string(method) == "pbvr-image";
         EXPECT_TRUE(testing::images_match(
-            image, pt, Vec3f(0.0f), {std::string(method) == "pbvr-image" ? 29.5 : 23.3, 1.0},
+            image, pt, Vec3f(0.0f),
+            image_space ? testing::ImageBounds{37.9, 0.08} : testing::ImageBounds{23.3, 0.6},
             std::string(method) + "_" +
                 std::string(c.file).substr(0, std::string(c.file).find('/'))));
         // The same seed: the same picture.
