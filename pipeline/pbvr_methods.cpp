@@ -179,6 +179,17 @@ class PbvrObject final : public RenderMethod {
             ps.opaque_color = &layer.color;
             ps.opaque_depth = &layer.depth;
         }
+        const double candidates = expected_candidates(ps, options);
+        if (candidates > kMaxObjectCandidates) {
+            return make_error(
+                ErrorCode::kInvalidArgument,
+                "pbvr-object: " + std::to_string(static_cast<long long>(candidates)) +
+                    " candidate particles a repetition, more than the " +
+                    std::to_string(static_cast<long long>(kMaxObjectCandidates)) +
+                    " allowed: the camera is inside or very near the volume, where the particle "
+                    "density grows as 1 / depth^2; move it out, or use pbvr-image",
+                scene.source);
+        }
         ObjectPbvrStats stats;
         result.image = render_object_pbvr(ps, options, &stats);
         NamedStats& s = result.stats;

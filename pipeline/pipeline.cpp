@@ -8,8 +8,10 @@
 #include <io/read_surface.h>
 #endif
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 
 namespace tr {
 namespace {
@@ -102,11 +104,51 @@ Status Pipeline::check(const Scene& scene, const RenderOptions& options) const {
     return method->check(scene, options);
 }
 
+namespace {
+
+// Whether any of `box` may be seen by `camera`: false only when the box lies wholly behind a
+// perspective eye or its projection (the hull of its projected corners) misses the picture.
+bool may_be_in_view(const Bounds3& box, const CameraFrame& camera) {
+    double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+    bool behind = false;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p((corner & 1) ? box.hi.x : box.lo.x, (corner & 2) ? box.hi.y : box.lo.y,
+                     (corner & 4) ? box.hi.z : box.lo.z);
+        const Vec3 s = camera.project(p);
+        if (!camera.orthographic() && s.z <= 0) {
+            behind = true;
+            continue;
+        }
+        x0 = std::min(x0, s.x), x1 = std::max(x1, s.x);
+        y0 = std::min(y0, s.y), y1 = std::max(y1, s.y);
+    }
+    if (behind) return x0 <= x1;  // straddles the eye's plane: maybe; wholly behind: no
+    return x1 >= 0 && y1 >= 0 && x0 <= camera.width() && y0 <= camera.height();
+}
+
+}  // namespace
+
 Result<RenderResult> Pipeline::render(const Scene& scene, const RenderOptions& options) {
     TR_TRY_STATUS(check(scene, options));
     const RenderMethod* method = find_method(scene.method_name());
     try {
-        return method->render(*this, scene, options);
+        TR_TRY(RenderResult result, method->render(*this, scene, options));
+        // A volume out of view draws nothing: say so (the picture is right, but rarely meant).
+        if (!scene.flow_volume) {
+            const CameraFrame frame(scene.camera, scene.width, scene.height);
+            for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
+                auto loaded = mesh(scene.volumes[v]);  // kept from the render: no reload
+                if (!loaded.ok() || (*loaded)->tets.num_real_tets() == 0) continue;
+                if (!may_be_in_view((*loaded)->tets.bounds(), frame)) {
+                    result.notes.push_back(
+                        (scene.volumes.size() > 1 ? "volume " + std::to_string(v) + " (" +
+                                                        scene.volumes[v].mesh.string() + ")"
+                                                  : scene.volumes[v].mesh.string()) +
+                        ": no cell is in view of the camera; nothing of it is drawn");
+                }
+            }
+        }
+        return result;
     } catch (const std::bad_alloc&) {
         return scene_error(scene, ErrorCode::kInternal, "out of memory while rendering");
     }

@@ -429,6 +429,16 @@ double expected_particles(const VolumeData& volume, CellId t, const CameraFrame&
     return integrate_density(volume, view, cell_of(volume, t));
 }
 
+double expected_candidates(const VolumeScene& scene, const ObjectPbvrOptions& options) {
+    const View view =
+        make_view(*scene.camera, std::max(1, options.subpixel_level), scene_size(scene));
+    double total = 0;
+    for (const VolumeData& v : scene.volumes) {
+        for (float b : cell_bounds(v, view, options.sampling)) total += b;
+    }
+    return total;
+}
+
 Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& options,
                          ObjectPbvrStats* stats) {
     const CameraFrame& camera = *scene.camera;

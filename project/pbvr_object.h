@@ -61,6 +61,16 @@ struct ObjectPbvrStats {
 double expected_particles(const VolumeData& volume, CellId t, const CameraFrame& camera,
                           int subpixel_level);
 
+// The candidate particles one repetition generates in expectation (over every volume: what
+// each cell's sampling draws from), to refuse absurd work before it starts. The density grows
+// as 1 / depth^2 towards a perspective eye, so a camera inside or very near the mesh can ask for
+// more than any budget (kMaxObjectCandidates). Cost: O(cells).
+double expected_candidates(const VolumeScene& scene, const ObjectPbvrOptions& options);
+
+// Candidates per repetition above this are refused (2^28: about 2,700 times those of a
+// 1M-tet mesh seen whole at 512 x 512, and tens of seconds a repetition on one core).
+inline constexpr double kMaxObjectCandidates = 268435456.0;
+
 // The picture. Preconditions: the scene's sizes agree (scalar per point, opaque buffers of the
 // camera's size), repetitions and subpixel_level >= 1 and their product with the pixels at
 // most kMaxParticleSamples (the pipeline checks these and says so). Cost per repetition: the

@@ -213,6 +213,12 @@ void PbvrWorker::run_batch(Job& job, int target) {
         ObjectPbvrOptions options = settings_.object;
         options.repetitions = repetitions;
         options.seed = seed;
+        if (expected_candidates(job.scene, options) > kMaxObjectCandidates) {
+            stats.error =
+                "pbvr-object: too many particles for this view (the camera is inside or very "
+                "near the volume); move it out, or use pbvr-image";
+            return;
+        }
         ObjectParticleSet set = ObjectParticleSet::generate(job.scene, options);
         image = set.render(job.scene);
         stats.particles += set.size();

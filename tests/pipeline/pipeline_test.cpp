@@ -178,6 +178,55 @@ TEST(Volumes, SeveralAreMergedPerPixel) {
     EXPECT_FALSE(pipeline.render(flow).ok());
 }
 
+// A volume the camera cannot see draws nothing, and the result says so, naming it; one in view
+// (the camera even inside it) gets no such note; for every method.
+TEST(Volumes, OneOutOfViewIsNoted) {
+    const auto out_of_view_notes = [](const RenderResult& r) {
+        return std::count_if(r.notes.begin(), r.notes.end(), [](const std::string& n) {
+            return n.find("no cell is in view") != std::string::npos;
+        });
+    };
+    for (const char* name : {"projected-tetrahedra", "pbvr-image", "pbvr-object"}) {
+        SCOPED_TRACE(name);
+        Scene scene = scene_of(grid(2), 48);
+        scene.method = method(name, 2);
+        SceneVolume away = scene.volumes[0];
+        away.mesh = "far";
+        std::vector<Vec3> points = away.tets->points();
+        for (Vec3& p : points) p.z -= 1000;  // far below the view
+        TetMesh far = TetMesh::create(points, away.tets->tets()).value();
+        for (const Field& f : away.tets->point_fields()) ASSERT_TRUE(far.add_point_field(f).ok());
+        away.tets = std::make_shared<const TetMesh>(std::move(far));
+        scene.volumes.push_back(away);
+        scene.volumes_key = true;
+        Pipeline pipeline;
+        auto both = pipeline.render(scene);
+        ASSERT_TRUE(both.ok()) << both.error().to_string();
+        EXPECT_EQ(out_of_view_notes(*both), 1);
+        bool named = false;
+        for (const std::string& n : both->notes) named |= n.find("volume 1 (far)") == 0;
+        EXPECT_TRUE(named);
+        // The visible one alone: no note; its picture is the one drawn with the other.
+        scene.volumes.pop_back();
+        auto one = pipeline.render(scene);
+        ASSERT_TRUE(one.ok());
+        EXPECT_EQ(out_of_view_notes(*one), 0);
+        // Seen from inside the volume, near a corner: in view. pbvr-object refuses it (its
+        // density grows as 1 / depth^2 towards the eye: the work would have no bound) with
+        // an error that says why, instead of running for hours.
+        scene.camera.position = scene.volumes[0].tets->bounds().lo + Vec3(0.1);
+        auto inside = pipeline.render(scene);
+        if (std::string(name) == "pbvr-object") {
+            ASSERT_FALSE(inside.ok());
+            EXPECT_NE(inside.error().message.find("inside or very near"), std::string::npos)
+                << inside.error().to_string();
+        } else {
+            ASSERT_TRUE(inside.ok()) << inside.error().to_string();
+            EXPECT_EQ(out_of_view_notes(*inside), 0);
+        }
+    }
+}
+
 // Counts wrong-way pairs of an order over `views` random views.
 std::size_t violations(Pipeline& pipeline, const SceneVolume& volume, SortMethod method,
                        int views) {
