@@ -3,6 +3,7 @@
 #include <project/tet_fragments.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -52,7 +53,8 @@ struct Pixel {
 void integrate_overlap(const std::vector<VolumeState>& volumes, const Segment* const* active,
                        std::size_t count, double a, double b, Pixel& pixel) {
     // Cut where any segment's scalar crosses a control point of its transfer function.
-    std::vector<double> cuts = {a, b};
+    thread_local std::vector<double> cuts;  // reused: this runs once per overlap interval
+    cuts.assign({a, b});
     for (std::size_t i = 0; i < count; ++i) {
         const Segment& s = *active[i];
         const double s0 = scalar_at(s, a), s1 = scalar_at(s, b);
@@ -65,6 +67,14 @@ void integrate_overlap(const std::vector<VolumeState>& volumes, const Segment* c
         }
     }
     std::sort(cuts.begin(), cuts.end());
+    auto extinction = [&](double t) {
+        double kappa = 0;
+        for (std::size_t i = 0; i < count; ++i) {
+            const Segment& s = *active[i];
+            kappa += volumes[s.volume].volume->tf->extinction(scalar_at(s, t));
+        }
+        return kappa;
+    };
     auto medium = [&](double t, double& kappa, Vec3& emission) {
         kappa = 0;
         emission = Vec3(0.0);
@@ -80,10 +90,7 @@ void integrate_overlap(const std::vector<VolumeState>& volumes, const Segment* c
     for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
         const double u0 = cuts[p], u1 = cuts[p + 1];
         if (!(u1 > u0)) continue;
-        double k0, k1;
-        Vec3 e;
-        medium(u0, k0, e);
-        medium(u1, k1, e);
+        const double k0 = extinction(u0), k1 = extinction(u1);
         const int steps =
             std::clamp(static_cast<int>(std::ceil(std::max(k0, k1) * (u1 - u0) / kMaxDepthStep)), 1,
                        kMaxSteps);
@@ -146,56 +153,108 @@ Image render_segment_merge(const VolumeScene& scene, SegmentMergeStats* stats) {
             }
         }
         total_fragments += segments.size();
-        // Each pixel's segments together, front to back (ties: volume, then exit), so the
-        // picture does not depend on the order cells were binned in.
-        std::sort(segments.begin(), segments.end(), [](const Segment& a, const Segment& b) {
-            if (a.pixel != b.pixel) return a.pixel < b.pixel;
-            if (a.t_in != b.t_in) return a.t_in < b.t_in;
-            if (a.volume != b.volume) return a.volume < b.volume;
-            return a.t_out < b.t_out;
-        });
+        // Each pixel's segments together (a counting sort by pixel), then front to back (ties:
+        // volume, then exit), so the picture does not depend on the order cells were binned in.
+        constexpr std::size_t kTilePixels = kFragmentTile * kFragmentTile;
+        std::array<std::uint32_t, kTilePixels + 1> first{};
+        for (const Segment& seg : segments) ++first[seg.pixel + 1];
+        for (std::size_t p = 0; p < kTilePixels; ++p) first[p + 1] += first[p];
+        thread_local std::vector<Segment> sorted;
+        sorted.resize(segments.size());
+        {
+            std::array<std::uint32_t, kTilePixels> fill;
+            std::copy(first.begin(), first.end() - 1, fill.begin());
+            for (const Segment& seg : segments) sorted[fill[seg.pixel]++] = seg;
+        }
+        // The pieces of every pixel in order: a piece where one segment is alone is shaded by
+        // its volume's shader, all of the tile's together per volume (the shader overlaps their
+        // lookups); a piece where segments overlap is integrated directly.
+        struct Piece {
+            std::uint32_t query;  // single: index into queries[volume]; overlap: kOverlap
+            std::uint8_t volume;
+            Vec3 color;  // overlap: premultiplied colour
+            double alpha;
+        };
+        constexpr std::uint32_t kOverlap = ~std::uint32_t{0};
+        thread_local std::vector<Piece> pieces;
+        thread_local std::vector<std::uint32_t> piece_first;
+        thread_local std::vector<std::vector<SegmentQuery>> queries;
+        thread_local std::vector<std::vector<ShadedSegment>> shaded;
+        queries.resize(volumes.size());
+        shaded.resize(volumes.size());
+        for (auto& q : queries) q.clear();
+        pieces.clear();
+        piece_first.assign(kTilePixels + 1, 0);
         std::size_t overlaps = 0;
         std::vector<const Segment*> active;
         std::vector<double> bounds;
-        for (std::size_t i = 0; i < segments.size();) {
-            std::size_t j = i;
-            while (j < segments.size() && segments[j].pixel == segments[i].pixel) ++j;
-            const int x = rays.x0 + segments[i].pixel % kFragmentTile;
-            const int y = rays.y0 + segments[i].pixel / kFragmentTile;
-            Pixel pixel;
+        for (std::size_t p = 0; p < kTilePixels; ++p) {
+            piece_first[p] = static_cast<std::uint32_t>(pieces.size());
+            const std::size_t i = first[p], j = first[p + 1];
+            if (i == j) continue;
+            std::sort(sorted.begin() + i, sorted.begin() + j,
+                      [](const Segment& a, const Segment& b) {
+                          if (a.t_in != b.t_in) return a.t_in < b.t_in;
+                          if (a.volume != b.volume) return a.volume < b.volume;
+                          return a.t_out < b.t_out;
+                      });
             // Sweep the pixel's segments: between consecutive ends, the segments that cover
             // the whole interval are active.
             bounds.clear();
             for (std::size_t k = i; k < j; ++k) {
-                bounds.push_back(segments[k].t_in);
-                bounds.push_back(segments[k].t_out);
+                bounds.push_back(sorted[k].t_in);
+                bounds.push_back(sorted[k].t_out);
             }
             std::sort(bounds.begin(), bounds.end());
             bounds.erase(std::unique(bounds.begin(), bounds.end()), bounds.end());
             std::size_t next = i;  // the first segment not yet active
             active.clear();
-            for (std::size_t b = 0; b + 1 < bounds.size() && pixel.transparency > 0; ++b) {
+            for (std::size_t b = 0; b + 1 < bounds.size(); ++b) {
                 const double a = bounds[b], e = bounds[b + 1];
                 std::erase_if(active, [&](const Segment* s) { return s->t_out <= a; });
-                while (next < j && segments[next].t_in <= a) active.push_back(&segments[next++]);
+                while (next < j && sorted[next].t_in <= a) active.push_back(&sorted[next++]);
                 if (active.empty()) continue;
                 // Neighbouring cells meet at a shared face whose plane each computes for itself:
                 // their ends may cross by a rounding error. Nothing to integrate there.
                 if (e - a <= 1e-12 * std::max(std::abs(a), std::abs(e))) continue;
                 if (active.size() == 1) {
                     // One segment alone here: its piece [a, e], shaded by its volume's shader.
-                    const Segment& s = *active[0];
-                    const ShadedSegment shaded = volumes[s.volume].volume->shader->shade(
-                        scalar_at(s, a), scalar_at(s, e), e - a);
-                    pixel.over(Vec3(shaded.color), shaded.alpha);
+                    const Segment& seg = *active[0];
+                    std::vector<SegmentQuery>& q = queries[seg.volume];
+                    pieces.push_back(
+                        {static_cast<std::uint32_t>(q.size()), seg.volume, Vec3(0.0), 0.0});
+                    q.push_back({scalar_at(seg, a), scalar_at(seg, e), e - a});
                     continue;
                 }
                 ++overlaps;
-                integrate_overlap(volumes, active.data(), active.size(), a, e, pixel);
+                Pixel part;
+                integrate_overlap(volumes, active.data(), active.size(), a, e, part);
+                pieces.push_back({kOverlap, 0, part.color, 1.0 - part.transparency});
             }
+        }
+        piece_first[kTilePixels] = static_cast<std::uint32_t>(pieces.size());
+        for (std::size_t v = 0; v < volumes.size(); ++v) {
+            shaded[v].resize(queries[v].size());
+            if (!queries[v].empty()) volumes[v].volume->shader->shade(queries[v], shaded[v]);
+        }
+        // Composited front to back over what lies behind.
+        for (std::size_t p = 0; p < kTilePixels; ++p) {
+            if (piece_first[p] == piece_first[p + 1]) continue;
+            Pixel pixel;
+            for (std::uint32_t k = piece_first[p]; k < piece_first[p + 1]; ++k) {
+                const Piece& piece = pieces[k];
+                if (piece.query == kOverlap) {
+                    pixel.color += pixel.transparency * piece.color;
+                    pixel.transparency *= 1.0 - piece.alpha;
+                } else {
+                    const ShadedSegment& sh = shaded[piece.volume][piece.query];
+                    pixel.over(Vec3(sh.color), sh.alpha);
+                }
+            }
+            const int x = rays.x0 + static_cast<int>(p % kFragmentTile);
+            const int y = rays.y0 + static_cast<int>(p / kFragmentTile);
             Vec3f& out = image.at(x, y);
             out = Vec3f(pixel.color + pixel.transparency * Vec3(out));
-            i = j;
         }
         total_overlaps += overlaps;
     });
