@@ -146,28 +146,59 @@ namespace {
 // The inverse CDF places each particle where the opacity puts it; the fixed choices and the
 // uniform one do not, which shows where the tets overlap. Against the exact merge at the same
 // repetitions, the inverse CDF is nearest (the paper's claim, measured).
-TEST(FusedPbvr, InverseCdfBeatsTheOtherDepthChoicesOnTwoCrossingTets) {
-    const TetMesh red =
+// The seed's two crossing tets (its figures 3 and 4): red and blue, each its own transfer
+// function, drawn into one picture.
+struct CrossingTets {
+    TetMesh red =
         TetMesh::create({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}}, {{0, 1, 2, 3}}).value();
-    const TetMesh blue =
+    TetMesh blue =
         TetMesh::create({{1.1, 1.1, 1.1}, {-0.9, 1.1, 1.1}, {1.1, -0.9, 1.1}, {1.1, 1.1, -0.9}},
                         {{0, 1, 2, 3}})
             .value();
-    const std::vector<float> red_s = {0.0f, 1.0f, 0.5f, 0.2f}, blue_s = {1.0f, 0.1f, 0.6f, 0.3f};
-    const TransferFunction red_tf =
+    std::vector<float> red_s = {0.0f, 1.0f, 0.5f, 0.2f}, blue_s = {1.0f, 0.1f, 0.6f, 0.3f};
+    TransferFunction red_tf =
         TransferFunction::create({{0, {0.3, 0, 0}}, {1, {1, 0.2, 0.1}}}, {{0, 0.2}, {1, 0.8}}, 0.6)
             .value();
-    const TransferFunction blue_tf =
+    TransferFunction blue_tf =
         TransferFunction::create({{0, {0, 0, 0.3}}, {1, {0.1, 0.3, 1}}}, {{0, 0.2}, {1, 0.8}}, 0.6)
             .value();
-    const SegmentShader red_shader(red_tf, Integrator::kPreintegrated, longest_edge(red));
-    const SegmentShader blue_shader(blue_tf, Integrator::kPreintegrated, longest_edge(blue));
-    const CameraFrame frame(testing::camera_at({3.5, -3.0, 2.5}, {0.7, 0.7, 0.7}, false, 40), 96,
-                            96);
-    VolumeScene scene;
-    scene.volumes.push_back({&red, red_s, &red_tf, &red_shader});
-    scene.volumes.push_back({&blue, blue_s, &blue_tf, &blue_shader});
-    scene.camera = &frame;
+    SegmentShader red_shader{red_tf, Integrator::kPreintegrated, longest_edge(red)};
+    SegmentShader blue_shader{blue_tf, Integrator::kPreintegrated, longest_edge(blue)};
+    CameraFrame frame{testing::camera_at({3.5, -3.0, 2.5}, {0.7, 0.7, 0.7}, false, 40), 96, 96};
+
+    VolumeScene scene() const {
+        VolumeScene s;
+        s.volumes.push_back({&red, red_s, &red_tf, &red_shader});
+        s.volumes.push_back({&blue, blue_s, &blue_tf, &blue_shader});
+        s.camera = &frame;
+        return s;
+    }
+};
+
+// Fused I-PBVR converges to the exact merge as the repetitions grow, with no floor: each 4x
+// more gains at least 5 dB (measured 7.9, 6.3, 6.7 from R = 4 to 256; the last 47.7 dB).
+TEST(FusedPbvr, ConvergesToTheExactMergeAsRepetitionsGrow) {
+    const CrossingTets tets;
+    const VolumeScene scene = tets.scene();
+    const Image exact = render_segment_merge(scene);
+    double previous = 0;
+    for (int r : {4, 16, 64, 256}) {
+        ImagePbvrOptions options;
+        options.repetitions = r;
+        const double psnr =
+            compare_images(render_image_pbvr(scene, options), exact, Vec3f(0.0f)).psnr_foreground;
+        std::printf("[ fused R = %d ] PSNR %.2f dB\n", r, psnr);
+        if (previous > 0) {
+            EXPECT_GT(psnr, previous + 5.0) << r;
+        }
+        previous = psnr;
+    }
+    EXPECT_GT(previous, 46.2);
+}
+
+TEST(FusedPbvr, InverseCdfBeatsTheOtherDepthChoicesOnTwoCrossingTets) {
+    const CrossingTets tets;
+    const VolumeScene scene = tets.scene();
     SegmentMergeStats merge;
     const Image exact = render_segment_merge(scene, &merge);
     EXPECT_GT(merge.overlap_intervals, 300u);
