@@ -53,6 +53,14 @@ namespace tr::io_detail {
 // file size. Throws IoError (kParse, "truncated ...") otherwise.
 void check_exodus_container(const fs::path& path);
 
+// Exodus II contents, read through netCDF (exodus_check.cpp), after check_exodus_container:
+// every block's connectivity refers to nodes 1..num_nodes (and an n-sided block's counts sum to
+// its list), blocks hold at most num_elem elements, side sets name elements 1..num_elem and
+// sides 1..6, node sets name nodes 1..num_nodes, and coordinates, id maps and result variables
+// have the shapes of their counts. Throws IoError (kParse) naming the block or set, the entry
+// and the bad id. Cost: one pass over the connectivity and sets, 8 MiB of buffer at most.
+void check_exodus_contents(const fs::path& path);
+
 // PLOT3D: finds the binary layout (byte order, Fortran records, multi-grid, precision, IBLANK)
 // whose size matches the xyz file exactly, and checks the q file (when not empty) against the
 // same grid. Throws IoError when no 3-D layout matches.

@@ -557,6 +557,7 @@ void triangulate_face_cells(vtkUnstructuredGrid* grid, SurfaceMesh& surface,
 UnstructuredMesh read_exodus(const fs::path& path, int time_step, const ProgressRange& progress) {
     const std::string where = path.string();
     check_exodus_container(path);
+    check_exodus_contents(path);
 
     vtkNew<vtkExodusIIReader> reader;
     reader->SetFileName(path.c_str());

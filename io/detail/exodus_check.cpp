@@ -1,0 +1,292 @@
+// Exodus II contents checked through netCDF before VTK's reader sees them: VTK indexes its
+// point arrays with the connectivity it reads and trusts every count, so an element id past
+// the node count crashes it (or, one past the end, reads garbage). Every variable VTK reads by
+// index is checked here: block connectivity (and polyhedral/n-sided counts), side sets, node
+// sets, and the shapes of coordinates, maps and result variables.
+
+#include <io/detail/common.h>
+#include <io/detail/readers.h>
+
+#include <algorithm>
+#include <netcdf.h>
+#include <optional>
+#include <vector>
+
+namespace tr::io_detail {
+
+namespace {
+
+// Values read in chunks of this many, so a large connectivity costs a bounded buffer.
+constexpr std::size_t kChunk = std::size_t(1) << 20;
+
+class NetcdfFile {
+  public:
+    NetcdfFile(const fs::path& path) : where_(path.string()) {
+        const int status = nc_open(path.c_str(), NC_NOWRITE, &id_);
+        if (status != NC_NOERR) {
+            fail(ErrorCode::kParse,
+                 std::string("cannot open as Exodus II (netCDF): ") + nc_strerror(status), where_);
+        }
+    }
+    ~NetcdfFile() { nc_close(id_); }
+    NetcdfFile(const NetcdfFile&) = delete;
+    NetcdfFile& operator=(const NetcdfFile&) = delete;
+
+    const std::string& where() const { return where_; }
+
+    std::optional<int> dim(const std::string& name) const {
+        int dim_id = -1;
+        if (nc_inq_dimid(id_, name.c_str(), &dim_id) != NC_NOERR) return std::nullopt;
+        return dim_id;
+    }
+    std::size_t dim_length(int dim_id) const {
+        std::size_t n = 0;
+        check(nc_inq_dimlen(id_, dim_id, &n), "dimension length");
+        return n;
+    }
+    // The named dimension's length; 0 when the file has no such dimension.
+    std::size_t length(const std::string& name) const {
+        const std::optional<int> d = dim(name);
+        return d ? dim_length(*d) : 0;
+    }
+    std::optional<int> var(const std::string& name) const {
+        int var_id = -1;
+        if (nc_inq_varid(id_, name.c_str(), &var_id) != NC_NOERR) return std::nullopt;
+        return var_id;
+    }
+    std::vector<int> var_dims(int var_id) const {
+        int ndims = 0;
+        check(nc_inq_varndims(id_, var_id, &ndims), "variable rank");
+        std::vector<int> dims(static_cast<std::size_t>(std::max(ndims, 0)));
+        if (ndims > 0) check(nc_inq_vardimid(id_, var_id, dims.data()), "variable dimensions");
+        return dims;
+    }
+    std::size_t var_size(int var_id) const {
+        std::size_t n = 1;
+        for (int d : var_dims(var_id)) n *= dim_length(d);
+        return n;
+    }
+    bool is_integer(int var_id) const {
+        nc_type type = NC_NAT;
+        check(nc_inq_vartype(id_, var_id, &type), "variable type");
+        return type == NC_BYTE || type == NC_SHORT || type == NC_INT || type == NC_INT64 ||
+               type == NC_UBYTE || type == NC_USHORT || type == NC_UINT || type == NC_UINT64;
+    }
+    // Calls visit(index, value) for every value of an integer variable, in storage order.
+    template <class Visit>
+    void for_each_value(int var_id, const std::string& name, Visit&& visit) const {
+        if (!is_integer(var_id)) {
+            fail(ErrorCode::kParse, "'" + name + "' is not an integer variable", where_);
+        }
+        const std::vector<int> dims = var_dims(var_id);
+        const std::size_t total = var_size(var_id);
+        std::vector<long long> buffer;
+        if (dims.empty()) {
+            long long v = 0;
+            check(nc_get_var_longlong(id_, var_id, &v), "'" + name + "'");
+            visit(std::size_t(0), v);
+            return;
+        }
+        // Chunks of whole rows along the first dimension.
+        std::size_t row = 1;
+        for (std::size_t k = 1; k < dims.size(); ++k) row *= dim_length(dims[k]);
+        if (row == 0) return;
+        const std::size_t rows = total / row;
+        const std::size_t rows_per_chunk = std::max<std::size_t>(1, kChunk / row);
+        std::vector<std::size_t> start(dims.size(), 0), count(dims.size());
+        for (std::size_t k = 1; k < dims.size(); ++k) count[k] = dim_length(dims[k]);
+        for (std::size_t r = 0; r < rows; r += rows_per_chunk) {
+            start[0] = r;
+            count[0] = std::min(rows_per_chunk, rows - r);
+            buffer.resize(count[0] * row);
+            check(nc_get_vara_longlong(id_, var_id, start.data(), count.data(), buffer.data()),
+                  "'" + name + "'");
+            for (std::size_t i = 0; i < buffer.size(); ++i) visit(r * row + i, buffer[i]);
+        }
+    }
+
+  private:
+    void check(int status, const std::string& what) const {
+        // NC_ERANGE: a value that does not fit a long long (a uint64 above 2^63) - out of any
+        // range we accept, so it is reported as such by the caller's bounds.
+        if (status != NC_NOERR && status != NC_ERANGE) {
+            fail(ErrorCode::kParse,
+                 "cannot read Exodus II " + what + ": " + std::string(nc_strerror(status)), where_);
+        }
+    }
+
+    int id_ = -1;
+    std::string where_;
+};
+
+// A variable's dimensions must be exactly `expected` (names); `what` names it in the message.
+void expect_shape(const NetcdfFile& file, int var_id, const std::string& what,
+                  const std::vector<std::string>& expected) {
+    const std::vector<int> dims = file.var_dims(var_id);
+    bool ok = dims.size() == expected.size();
+    for (std::size_t k = 0; ok && k < dims.size(); ++k) {
+        const std::optional<int> want = file.dim(expected[k]);
+        ok = want.has_value() && dims[k] == *want;
+    }
+    if (!ok) {
+        std::string shape;
+        for (const std::string& e : expected) shape += (shape.empty() ? "" : ", ") + e;
+        fail(ErrorCode::kParse, "'" + what + "' must have the dimensions (" + shape + ")",
+             file.where());
+    }
+}
+
+// Every value of `var_name` (when present) must lie in [1, limit].
+void expect_ids_in_range(const NetcdfFile& file, const std::string& var_name,
+                         const std::string& what, std::size_t limit,
+                         const std::string& limit_what) {
+    const std::optional<int> var = file.var(var_name);
+    if (!var) return;
+    file.for_each_value(*var, var_name, [&](std::size_t i, long long v) {
+        if (v < 1 || static_cast<unsigned long long>(v) > limit) {
+            fail(ErrorCode::kParse,
+                 "Exodus II " + what + " (" + var_name + "): entry " + std::to_string(i) + " is " +
+                     std::to_string(v) + ", outside 1.." + std::to_string(limit) + " (" +
+                     limit_what + ")",
+                 file.where());
+        }
+    });
+}
+
+// Block `b` (1-based): its connectivity refers to nodes 1..num_nodes, its shape matches its
+// counts; returns its element count.
+std::size_t check_block(const NetcdfFile& file, std::size_t b, std::size_t num_nodes) {
+    const std::string n = std::to_string(b);
+    const std::string conn_name = "connect" + n;
+    const std::string block = "element block " + n;
+    const std::optional<int> conn = file.var(conn_name);
+    const std::size_t num_elems = file.length("num_el_in_blk" + n);
+    if (!conn) {
+        if (num_elems > 0) {
+            fail(ErrorCode::kParse,
+                 "Exodus II " + block + " has " + std::to_string(num_elems) +
+                     " elements but no connectivity ('" + conn_name + "')",
+                 file.where());
+        }
+        return 0;
+    }
+    if (const std::optional<int> counts = file.var("ebepecnt" + n)) {
+        // N-sided / polyhedral block: one node count per element, summing to the list length.
+        expect_shape(file, *counts, "ebepecnt" + n, {"num_el_in_blk" + n});
+        expect_shape(file, *conn, conn_name, {"num_nod_per_el" + n});
+        const std::size_t list = file.length("num_nod_per_el" + n);
+        std::size_t sum = 0;
+        file.for_each_value(*counts, "ebepecnt" + n, [&](std::size_t i, long long v) {
+            if (v < 1 || static_cast<unsigned long long>(v) > list - sum) {
+                fail(ErrorCode::kParse,
+                     "Exodus II " + block + ": element " + std::to_string(i) + " has " +
+                         std::to_string(v) + " nodes, but its list has " +
+                         std::to_string(list - sum) + " entries left",
+                     file.where());
+            }
+            sum += static_cast<std::size_t>(v);
+        });
+        if (sum != list) {
+            fail(ErrorCode::kParse,
+                 "Exodus II " + block + ": element node counts sum to " + std::to_string(sum) +
+                     ", its connectivity has " + std::to_string(list) + " entries",
+                 file.where());
+        }
+    } else if (file.var("fbepecnt" + n)) {
+        return num_elems;  // polyhedra: the connectivity lists faces, not nodes; not checked
+    } else {
+        expect_shape(file, *conn, conn_name, {"num_el_in_blk" + n, "num_nod_per_el" + n});
+    }
+    const std::size_t per_element = std::max<std::size_t>(1, file.length("num_nod_per_el" + n));
+    file.for_each_value(*conn, conn_name, [&](std::size_t i, long long v) {
+        if (v < 1 || static_cast<unsigned long long>(v) > num_nodes) {
+            fail(ErrorCode::kParse,
+                 "Exodus II " + block + " (" + conn_name + "): element " +
+                     std::to_string(i / per_element + 1) + " refers to node " + std::to_string(v) +
+                     ", outside 1.." + std::to_string(num_nodes) + " (the file's node count)",
+                 file.where());
+        }
+    });
+    return num_elems;
+}
+
+}  // namespace
+
+void check_exodus_contents(const fs::path& path) {
+    const NetcdfFile file(path);
+    const std::size_t num_nodes = file.length("num_nodes");
+    const std::size_t num_elem = file.length("num_elem");
+    const std::size_t num_blocks = file.length("num_el_blk");
+
+    // Coordinates: one array per axis, or one (num_dim, num_nodes) array.
+    for (const char* axis : {"coordx", "coordy", "coordz"}) {
+        if (const std::optional<int> v = file.var(axis)) {
+            expect_shape(file, *v, axis, {"num_nodes"});
+        }
+    }
+    if (const std::optional<int> v = file.var("coord")) {
+        expect_shape(file, *v, "coord", {"num_dim", "num_nodes"});
+    }
+    for (const char* map : {"node_num_map", "node_id_map"}) {
+        if (const std::optional<int> v = file.var(map)) expect_shape(file, *v, map, {"num_nodes"});
+    }
+    for (const char* map : {"elem_num_map", "elem_id_map"}) {
+        if (const std::optional<int> v = file.var(map)) expect_shape(file, *v, map, {"num_elem"});
+    }
+
+    std::size_t total = 0;
+    for (std::size_t b = 1; b <= num_blocks; ++b) {
+        const std::size_t n = check_block(file, b, num_nodes);
+        if (n > num_elem - std::min(total, num_elem)) {
+            fail(ErrorCode::kParse,
+                 "Exodus II element blocks hold more elements than num_elem (" +
+                     std::to_string(num_elem) + ")",
+                 file.where());
+        }
+        total += n;
+    }
+
+    // Result variables: one value per node or per element of their block, per time step.
+    const std::size_t num_nod_var = file.length("num_nod_var");
+    for (std::size_t v = 1; v <= num_nod_var; ++v) {
+        const std::string name = "vals_nod_var" + std::to_string(v);
+        if (const std::optional<int> id = file.var(name)) {
+            expect_shape(file, *id, name, {"time_step", "num_nodes"});
+        }
+    }
+    if (const std::optional<int> id = file.var("vals_nod_var")) {
+        expect_shape(file, *id, "vals_nod_var", {"time_step", "num_nod_var", "num_nodes"});
+    }
+    const std::size_t num_elem_var = file.length("num_elem_var");
+    for (std::size_t v = 1; v <= num_elem_var; ++v) {
+        for (std::size_t b = 1; b <= num_blocks; ++b) {
+            const std::string name = "vals_elem_var" + std::to_string(v) + "eb" + std::to_string(b);
+            if (const std::optional<int> id = file.var(name)) {
+                expect_shape(file, *id, name, {"time_step", "num_el_in_blk" + std::to_string(b)});
+            }
+        }
+    }
+
+    // Side sets name elements (1..num_elem) and a side of each (a 3-D element has at most 6);
+    // node sets name nodes.
+    const std::size_t num_side_sets = file.length("num_side_sets");
+    for (std::size_t s = 1; s <= num_side_sets; ++s) {
+        const std::string n = std::to_string(s);
+        for (const char* var : {"elem_ss", "side_ss"}) {
+            if (const std::optional<int> id = file.var(var + n)) {
+                expect_shape(file, *id, var + n, {"num_side_ss" + n});
+            }
+        }
+        expect_ids_in_range(file, "elem_ss" + n, "side set " + n, num_elem,
+                            "the file's element count");
+        expect_ids_in_range(file, "side_ss" + n, "side set " + n, 6, "an element's sides");
+    }
+    const std::size_t num_node_sets = file.length("num_node_sets");
+    for (std::size_t s = 1; s <= num_node_sets; ++s) {
+        const std::string n = std::to_string(s);
+        expect_ids_in_range(file, "node_ns" + n, "node set " + n, num_nodes,
+                            "the file's node count");
+    }
+}
+
+}  // namespace tr::io_detail
