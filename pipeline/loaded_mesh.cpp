@@ -23,6 +23,25 @@ Error with_where(Error error, const std::string& path) {
     return error;
 }
 
+namespace {
+
+// Why a mesh ended with no tetrahedron, from what the split or Delaunay reported.
+std::string why_no_tets(const LoadedMesh& loaded) {
+    if (loaded.used_delaunay) {
+        return std::to_string(loaded.input.points.size()) +
+               " points span no volume (coincident or coplanar): Delaunay made no tetrahedron";
+    }
+    const TetrahedralizeReport& r = loaded.report;
+    return std::to_string(loaded.input.num_cells()) +
+           " cells left no tetrahedron of non-zero volume (" +
+           std::to_string(r.num_degenerate_cells) + " cells of zero volume, " +
+           std::to_string(r.num_degenerate_tets) + " zero-volume tets, " +
+           std::to_string(r.num_skipped_cells) +
+           " unsupported cells dropped; coplanar, coincident or overflowing coordinates)";
+}
+
+}  // namespace
+
 Result<LoadedMesh> load_tet_mesh(UnstructuredMesh input, const std::string& name,
                                  const LoadOptions& options) {
     LoadedMesh loaded;
@@ -56,6 +75,10 @@ Result<LoadedMesh> load_tet_mesh(UnstructuredMesh input, const std::string& name
         auto tets = tetrahedralize(loaded.input, tet_options, &loaded.report);
         if (!tets.ok()) return with_where(tets.error(), name);
         loaded.tets = std::move(tets).value();
+    }
+    if (loaded.tets.num_tets() == 0) {
+        // Nothing to draw: a black picture with exit 0 would look like a rendering.
+        return make_error(ErrorCode::kInvalidMesh, "empty volume: " + why_no_tets(loaded), name);
     }
     loaded.tetrahedralize_ms = ms_since(start);
     return loaded;

@@ -32,7 +32,9 @@ struct LoadedMesh {
 };
 
 // Reads `path` (io/read_mesh.h lists the formats) and tetrahedralizes it. Errors: those of
-// read_mesh and tetrahedralize, with the path in `where`; kUnsupported for a point cloud in a
+// read_mesh and tetrahedralize, with the path in `where`; kInvalidMesh when no tetrahedron of
+// non-zero volume is left (coplanar cells, all points coincident, coordinates whose volumes
+// overflow), saying how many cells or points gave nothing; kUnsupported for a point cloud in a
 // build without CGAL, or for any file in a build without VTK. Cost: the reader's and the
 // split's, O(file size + cells log cells).
 Result<LoadedMesh> load_tet_mesh(const std::filesystem::path& path, const LoadOptions& options);

@@ -1,0 +1,93 @@
+// Bad input through the command line (issue 13): meshes that leave no tetrahedron of non-zero
+// volume must be a one-line error and exit 1 from every command that loads them, not a black
+// picture with exit 0 (what `render` did before), and leave no output file.
+#include <tests/apps/cli_runner.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace tr {
+namespace {
+
+using testing::make_temp_dir;
+using testing::run_cli;
+using testing::shell_quote;
+
+struct Vertex {
+    double x, y, z;
+};
+
+// A legacy ASCII unstructured grid with a point scalar `s` (all 1).
+std::string legacy_grid(const std::vector<Vertex>& points,
+                        const std::vector<std::vector<int>>& cells, int cell_type) {
+    std::string s = "# vtk DataFile Version 4.2\nempty volume\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+    s += "POINTS " + std::to_string(points.size()) + " double\n";
+    for (const Vertex& p : points) {
+        char line[128];
+        std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", p.x, p.y, p.z);
+        s += line;
+    }
+    std::size_t size = 0;
+    for (const auto& c : cells) size += c.size() + 1;
+    s += "CELLS " + std::to_string(cells.size()) + " " + std::to_string(size) + "\n";
+    for (const auto& c : cells) {
+        s += std::to_string(c.size());
+        for (int id : c) {
+            s += ' ';
+            s += std::to_string(id);
+        }
+        s += "\n";
+    }
+    s += "CELL_TYPES " + std::to_string(cells.size()) + "\n";
+    for (std::size_t i = 0; i < cells.size(); ++i) s += std::to_string(cell_type) + "\n";
+    s += "POINT_DATA " + std::to_string(points.size()) +
+         "\nSCALARS s float 1\nLOOKUP_TABLE default\n";
+    for (std::size_t i = 0; i < points.size(); ++i) s += "1\n";
+    return s;
+}
+
+TEST(CliBadInput, MeshWithNoTetrahedronLeftIsAnError) {
+    std::vector<Vertex> cube = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    std::vector<Vertex> far_corner = cube;
+    far_corner[6] = {1e38, 1e38, 1e38};  // volumes overflow: every tet is dropped
+    const struct {
+        std::string name;
+        std::string text;
+    } cases[] = {
+        {"coplanar.vtk", legacy_grid({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 0, 0}},
+                                     {{0, 1, 2, 3}, {1, 2, 3, 4}}, 10)},
+        {"far_corner.vtk", legacy_grid(far_corner, {{0, 1, 2, 3, 4, 5, 6, 7}}, 12)},
+        {"coincident.vtk",
+         legacy_grid({{0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}},
+                     {{0, 1, 2, 3}}, 10)},
+    };
+    const std::string dir = make_temp_dir();
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        const std::string in = dir + "/" + c.name;
+        std::ofstream(in) << c.text;
+        const std::string png = dir + "/out.png";
+        const std::string vtu = dir + "/out.vtu";
+        for (const std::string& args :
+             {"render " + shell_quote(in) + " --scalar s -o " + shell_quote(png),
+              "tetrahedralize " + shell_quote(in) + " -o " + shell_quote(vtu),
+              "info " + shell_quote(in)}) {
+            SCOPED_TRACE(args);
+            const testing::CliRun run = run_cli(args);
+            EXPECT_EQ(run.exit_code, 1) << run.err;
+            EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;  // one line
+            EXPECT_NE(run.err.find(c.name + ": error: empty volume"), std::string::npos) << run.err;
+            EXPECT_FALSE(std::filesystem::exists(png));
+            EXPECT_FALSE(std::filesystem::exists(vtu));
+        }
+    }
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tr
