@@ -145,7 +145,7 @@ class LegacyBody {
                        kw == "TRIANGLE_STRIPS") {
                 cells(kw);
             } else if (kw == "CELL_TYPES") {
-                values(count("the cell count"), "int", "CELL_TYPES");
+                cell_types(count("the cell count"));
             } else if (kw == "POINT_DATA" || kw == "CELL_DATA") {
                 tuples_ = count("the tuple count");
             } else if (kw == "SCALARS") {
@@ -266,6 +266,34 @@ class LegacyBody {
                  at());
         }
         return true;
+    }
+
+    // CELL_TYPES: `n` ints. Polyhedra (VTK type 42) are refused: VTK decodes their face stream
+    // from the cell list trusting its counts (a bad one crashes it), and tetrender cannot split
+    // them into tets anyway.
+    void cell_types(std::uint64_t n) {
+        if (header_.binary) {
+            in_.end_line();
+            if (n > in_.left() / 4) {
+                fail(ErrorCode::kParse,
+                     "truncated file: CELL_TYPES needs " + std::to_string(4 * n) + " bytes, " +
+                         std::to_string(in_.left()) + " are left",
+                     at());
+            }
+        } else if (n > in_.left() / 2 + 1) {
+            fail(ErrorCode::kParse,
+                 "truncated file: CELL_TYPES declares " + std::to_string(n) + " values, " +
+                     std::to_string(in_.left()) + " bytes are left",
+                 at());
+        }
+        for (std::uint64_t i = 0; i < n; ++i) {
+            if (integer_value("int", "CELL_TYPES") == 42) {
+                fail(ErrorCode::kUnsupported,
+                     "CELL_TYPES: cell " + std::to_string(i) +
+                         " is a polyhedron (type 42), which tetrender does not read",
+                     at());
+            }
+        }
     }
 
     // vtkDataReader::ReadScalarData: name, type, then an optional component count (>= 1) and

@@ -51,6 +51,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <fstream>
 #include <sstream>
 
 namespace tr::io_detail {
@@ -365,6 +366,32 @@ std::string xml_attribute(const std::string& text, std::size_t from, const std::
     return {};
 }
 
+// Whether `needle` occurs in the file (read in 1 MiB chunks overlapping by the needle's size).
+bool file_contains(const fs::path& path, const std::string& needle) {
+    std::ifstream in(path, std::ios::binary);
+    std::string window;
+    std::vector<char> chunk(1 << 20);
+    while (in) {
+        in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+        const auto got = static_cast<std::size_t>(in.gcount());
+        if (got == 0) break;
+        window.append(chunk.data(), got);
+        if (window.find(needle) != std::string::npos) return true;
+        if (window.size() > needle.size()) window.erase(0, window.size() - needle.size());
+    }
+    return false;
+}
+
+// The type="..." of the first `element` (e.g. "<DataArray") after `section` (e.g. "<Points"),
+// or "" when there is none.
+std::string first_array_type(const std::string& text, const std::string& section,
+                             const std::string& element) {
+    const std::size_t at = text.find(section);
+    if (at == std::string::npos) return {};
+    const std::size_t array = text.find(element, at);
+    return array == std::string::npos ? std::string() : xml_attribute(text, array, "type");
+}
+
 // Checks that a file looks like a VTK XML file of `type`; the name of the extension for errors.
 void check_vtk_xml(const fs::path& path, const std::string& type, const std::string& ext) {
     const std::string where = path.string();
@@ -414,6 +441,15 @@ void check_vtk_xml(const fs::path& path, const std::string& type, const std::str
                      where);
             }
         }
+    }
+    // Polyhedron cells (VTK type 42) come with a face stream VTK trusts (a face count past its
+    // list crashes it); tetrender cannot split polyhedra into tets anyway.
+    if (type == "UnstructuredGrid" &&
+        (file_contains(path, "Name=\"faces\"") || file_contains(path, "Name='faces'"))) {
+        fail(ErrorCode::kUnsupported,
+             "polyhedron cells (a 'faces' array) are not supported: tetrender reads cells with "
+             "fixed corners (tets, hexahedra, wedges, pyramids, ...)",
+             where);
     }
     for (std::size_t pos = piece_head.find("<Piece"); pos != std::string::npos;
          pos = piece_head.find("<Piece", pos + 1)) {
@@ -474,6 +510,17 @@ UnstructuredMesh read_vtk_xml(const fs::path& path, const std::string& ext,
                      "piece '" + source + "' listed in the .pvtu does not exist", where);
             }
             check_vtk_xml(piece, "UnstructuredGrid", ".vtu");
+            // VTK reads a piece's points as the .pvtu's PPoints declare them: a type that
+            // differs reinterprets the bytes (Float64 over Float32: coordinates up to 3e9).
+            const std::string declared = first_array_type(text, "<PPoints", "<PDataArray");
+            const std::string stored =
+                first_array_type(read_head(piece, 1 << 16), "<Points", "<DataArray");
+            if (!declared.empty() && !stored.empty() && declared != stored) {
+                fail(ErrorCode::kParse,
+                     "PPoints declares " + declared + " points, but piece '" + source +
+                         "' stores " + stored,
+                     where);
+            }
         }
     }
 
