@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <pipeline/pbvr_methods.h>
+#include <pipeline/scene_volumes.h>
 
 namespace tr {
 namespace {
@@ -13,48 +14,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kDefaultRepetitions = 64;
-
-// The scene's volumes loaded, with their scalars, for a particle renderer.
-struct LoadedVolumes {
-    std::vector<std::shared_ptr<const LoadedMesh>> meshes;
-    std::vector<std::vector<float>> scalars;
-    VolumeScene scene;
-};
-
-Result<LoadedVolumes> load_volumes(Pipeline& pipeline, const Scene& scene, NamedStats& stats) {
-    LoadedVolumes loaded;
-    double load_ms = 0, tetrahedralize_ms = 0;
-    std::size_t cells = 0;
-    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
-        const SceneVolume& volume = scene.volumes[v];
-        // With several volumes, errors say which.
-        auto name = [&](Error e) {
-            if (scene.volumes.size() > 1)
-                e.message = "volume " + std::to_string(v) + ": " + e.message;
-            return e;
-        };
-        auto loaded_mesh = pipeline.mesh(volume);
-        if (!loaded_mesh.ok()) return name(loaded_mesh.error());
-        std::shared_ptr<const LoadedMesh> mesh = std::move(loaded_mesh).value();
-        auto values = pipeline.scalar(volume, mesh->tets);
-        if (!values.ok()) return name(values.error());
-        std::vector<float> scalar = std::move(values).value();
-        load_ms += mesh->read_ms;
-        tetrahedralize_ms += mesh->tetrahedralize_ms;
-        cells += mesh->tets.num_real_tets();
-        loaded.meshes.push_back(std::move(mesh));
-        loaded.scalars.push_back(std::move(scalar));
-    }
-    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
-        loaded.scene.volumes.push_back(
-            {&loaded.meshes[v]->tets, loaded.scalars[v], &scene.volumes[v].transfer_function});
-    }
-    stats.set("load_ms", load_ms);
-    stats.set("tetrahedralize_ms", tetrahedralize_ms);
-    stats.set("cells", cells);
-    stats.set("volumes", scene.volumes.size());
-    return loaded;
-}
 
 // What both methods refuse, and the keys they share.
 Status check_common(const Scene& scene, const RenderOptions& options, std::string_view name,
@@ -160,7 +119,8 @@ class PbvrObject final : public RenderMethod {
     Result<RenderResult> render(Pipeline& pipeline, const Scene& scene,
                                 const RenderOptions&) const override {
         RenderResult result;
-        TR_TRY(LoadedVolumes loaded, load_volumes(pipeline, scene, result.stats));
+        TR_TRY(const std::unique_ptr<SceneVolumes> loaded,
+               load_scene_volumes(pipeline, scene, result.stats));
         const CameraFrame frame(scene.camera, scene.width, scene.height);
         TR_TRY(const OpaqueLayer layer, opaque_layer(pipeline, scene, frame, result.stats));
         ObjectPbvrOptions options;
@@ -172,7 +132,7 @@ class PbvrObject final : public RenderMethod {
         if (const MethodOption* o = option(scene, "sampling")) {
             options.sampling = *parse_particle_sampling(std::get<std::string>(*o));
         }
-        VolumeScene& ps = loaded.scene;
+        VolumeScene& ps = loaded->scene;
         ps.camera = &frame;
         ps.background = scene.background;
         if (!layer.depth.empty()) {
@@ -236,7 +196,8 @@ class PbvrImage final : public RenderMethod {
     Result<RenderResult> render(Pipeline& pipeline, const Scene& scene,
                                 const RenderOptions&) const override {
         RenderResult result;
-        TR_TRY(LoadedVolumes loaded, load_volumes(pipeline, scene, result.stats));
+        TR_TRY(const std::unique_ptr<SceneVolumes> loaded,
+               load_scene_volumes(pipeline, scene, result.stats));
         const CameraFrame frame(scene.camera, scene.width, scene.height);
         TR_TRY(const OpaqueLayer layer, opaque_layer(pipeline, scene, frame, result.stats));
         ImagePbvrOptions options;
@@ -251,7 +212,7 @@ class PbvrImage final : public RenderMethod {
         if (const MethodOption* o = option(scene, "control_variate")) {
             options.control_variate = std::get<bool>(*o);
         }
-        VolumeScene& ps = loaded.scene;
+        VolumeScene& ps = loaded->scene;
         ps.camera = &frame;
         ps.background = scene.background;
         if (!layer.depth.empty()) {
@@ -262,7 +223,7 @@ class PbvrImage final : public RenderMethod {
             const auto start = Clock::now();
             ps.volumes[0].shader =
                 &pipeline.shader(scene.volumes[0].transfer_function, Integrator::kPreintegrated,
-                                 longest_edge(loaded.meshes[0]->tets));
+                                 longest_edge(loaded->meshes[0]->tets));
             result.stats.set("shader_ms", ms_since(start));
         }
         ImagePbvrStats stats;

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <pipeline/flow_volume_render.h>
 #include <pipeline/projected_tetrahedra.h>
+#include <pipeline/scene_volumes.h>
 
 namespace tr {
 namespace {
@@ -70,47 +71,22 @@ Result<RenderResult> render_flow_volume(Pipeline& pipeline, const Scene& scene,
 // own path for them (project/reference_raycaster.h), one volume by the one-mesh path.
 Result<RenderResult> render_reference_picture(Pipeline& pipeline, const Scene& scene) {
     RenderResult result;
-    std::vector<std::shared_ptr<const LoadedMesh>> meshes;
-    std::vector<std::vector<float>> scalars;
-    double load_ms = 0, tetrahedralize_ms = 0;
-    std::size_t cells = 0;
-    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
-        const SceneVolume& volume = scene.volumes[v];
-        // With several volumes, errors say which.
-        auto name = [&](Error e) {
-            if (scene.volumes.size() > 1)
-                e.message = "volume " + std::to_string(v) + ": " + e.message;
-            return e;
-        };
-        auto loaded = pipeline.mesh(volume);
-        if (!loaded.ok()) return name(loaded.error());
-        std::shared_ptr<const LoadedMesh> mesh = std::move(loaded).value();
-        auto values = pipeline.scalar(volume, mesh->tets);
-        if (!values.ok()) return name(values.error());
-        load_ms += mesh->read_ms;
-        tetrahedralize_ms += mesh->tetrahedralize_ms;
-        cells += mesh->tets.num_real_tets();
-        meshes.push_back(std::move(mesh));
-        scalars.push_back(std::move(values).value());
-    }
-    result.stats.set("load_ms", load_ms);
-    result.stats.set("tetrahedralize_ms", tetrahedralize_ms);
+    TR_TRY(const std::unique_ptr<SceneVolumes> loaded,
+           load_scene_volumes(pipeline, scene, result.stats));
     const CameraFrame frame(scene.camera, scene.width, scene.height);
     const auto start = Clock::now();
     if (scene.volumes.size() == 1) {
         result.image =
-            render_reference(meshes[0]->tets, scalars[0], scene.volumes[0].transfer_function, frame,
-                             scene.background);
+            render_reference(loaded->meshes[0]->tets, loaded->scalars[0],
+                             scene.volumes[0].transfer_function, frame, scene.background);
     } else {
         std::vector<ReferenceVolume> volumes;
-        for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
-            volumes.push_back({&meshes[v]->tets, scalars[v], &scene.volumes[v].transfer_function});
+        for (const VolumeData& v : loaded->scene.volumes) {
+            volumes.push_back({v.mesh, v.scalar, v.tf});
         }
         result.image = render_reference(volumes, frame, scene.background);
     }
     result.stats.set("raster_ms", ms_since(start));
-    result.stats.set("cells", cells);
-    if (scene.volumes.size() > 1) result.stats.set("volumes", scene.volumes.size());
     result.stats.set("integrator", "reference");
     result.stats.set("width", scene.width);
     result.stats.set("height", scene.height);
@@ -130,39 +106,12 @@ Result<RenderResult> render_merged(Pipeline& pipeline, const Scene& scene,
                                "; drawn by merging each pixel's segments by depth "
                                "instead, which needs no order");
     }
-    std::vector<std::shared_ptr<const LoadedMesh>> meshes;
-    std::vector<std::vector<float>> scalars;
-    double load_ms = 0, tetrahedralize_ms = 0;
-    std::size_t cells = 0;
-    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
-        const SceneVolume& volume = scene.volumes[v];
-        // With several volumes, errors say which.
-        auto name = [&](Error e) {
-            if (scene.volumes.size() > 1)
-                e.message = "volume " + std::to_string(v) + ": " + e.message;
-            return e;
-        };
-        auto loaded_mesh = pipeline.mesh(volume);
-        if (!loaded_mesh.ok()) return name(loaded_mesh.error());
-        std::shared_ptr<const LoadedMesh> mesh = std::move(loaded_mesh).value();
-        auto values = pipeline.scalar(volume, mesh->tets);
-        if (!values.ok()) return name(values.error());
-        std::vector<float> scalar = std::move(values).value();
-        load_ms += mesh->read_ms;
-        tetrahedralize_ms += mesh->tetrahedralize_ms;
-        cells += mesh->tets.num_real_tets();
-        meshes.push_back(std::move(mesh));
-        scalars.push_back(std::move(scalar));
-    }
-    result.stats.set("load_ms", load_ms);
-    result.stats.set("tetrahedralize_ms", tetrahedralize_ms);
+    TR_TRY(const std::unique_ptr<SceneVolumes> loaded,
+           load_scene_volumes(pipeline, scene, result.stats));
     auto start = Clock::now();
-    VolumeScene merged;
-    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
-        const TransferFunction& tf = scene.volumes[v].transfer_function;
-        merged.volumes.push_back(
-            {&meshes[v]->tets, scalars[v], &tf,
-             &pipeline.shader(tf, options.integrator, longest_edge(meshes[v]->tets))});
+    VolumeScene& merged = loaded->scene;
+    for (VolumeData& v : merged.volumes) {
+        v.shader = &pipeline.shader(*v.tf, options.integrator, longest_edge(*v.mesh));
     }
     result.stats.set("shader_ms", ms_since(start));
     const CameraFrame frame(scene.camera, scene.width, scene.height);
@@ -181,8 +130,6 @@ Result<RenderResult> render_merged(Pipeline& pipeline, const Scene& scene,
     result.image = render_segment_merge(merged, &merge);
     NamedStats& stats = result.stats;
     stats.set("raster_ms", merge.raster_ms);
-    stats.set("cells", cells);
-    stats.set("volumes", scene.volumes.size());
     stats.set("fragments", merge.fragments);
     stats.set("overlap_intervals", merge.overlap_intervals);
     stats.set("compositing", "merged");

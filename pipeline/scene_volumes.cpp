@@ -1,0 +1,41 @@
+#include <pipeline/scene_volumes.h>
+#include <string>
+
+namespace tr {
+
+Result<std::unique_ptr<SceneVolumes>> load_scene_volumes(Pipeline& pipeline, const Scene& scene,
+                                                         NamedStats& stats) {
+    auto loaded = std::make_unique<SceneVolumes>();
+    double load_ms = 0, tetrahedralize_ms = 0;
+    std::size_t cells = 0;
+    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
+        const SceneVolume& volume = scene.volumes[v];
+        // With several volumes, errors say which.
+        auto name = [&](Error e) {
+            if (scene.volumes.size() > 1) {
+                e.message = "volume " + std::to_string(v) + ": " + e.message;
+            }
+            return e;
+        };
+        auto mesh = pipeline.mesh(volume);
+        if (!mesh.ok()) return name(mesh.error());
+        auto values = pipeline.scalar(volume, (*mesh)->tets);
+        if (!values.ok()) return name(values.error());
+        load_ms += (*mesh)->read_ms;
+        tetrahedralize_ms += (*mesh)->tetrahedralize_ms;
+        cells += (*mesh)->tets.num_real_tets();
+        loaded->meshes.push_back(std::move(mesh).value());
+        loaded->scalars.push_back(std::move(values).value());
+    }
+    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
+        loaded->scene.volumes.push_back(
+            {&loaded->meshes[v]->tets, loaded->scalars[v], &scene.volumes[v].transfer_function});
+    }
+    stats.set("load_ms", load_ms);
+    stats.set("tetrahedralize_ms", tetrahedralize_ms);
+    stats.set("cells", cells);
+    stats.set("volumes", scene.volumes.size());
+    return loaded;
+}
+
+}  // namespace tr

@@ -1,0 +1,31 @@
+#pragma once
+// A scene's volumes loaded through a Pipeline's cache, each with its scalar, as the renderers of
+// several volumes take them (project/volume_scene.h): one load path for the segment merge, the
+// particle renderers and the reference ray caster.
+
+#include <core/result.h>
+#include <project/volume_scene.h>
+
+#include <memory>
+#include <pipeline/loaded_mesh.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/render_stats.h>
+#include <vector>
+
+namespace tr {
+
+struct SceneVolumes {
+    std::vector<std::shared_ptr<const LoadedMesh>> meshes;  // per scene volume
+    std::vector<std::vector<float>> scalars;                // per scene volume, per point
+    // Each volume's mesh, scalar and transfer function (no shader, camera or opaque layer yet):
+    // pointers into this object and into the scene, valid while both live unmoved.
+    VolumeScene scene;
+};
+
+// Loads every volume of `scene` and its scalar. Errors are the pipeline's, prefixed with
+// "volume N: " when the scene has several. Sets `stats`' load_ms, tetrahedralize_ms (summed),
+// cells (real tets, summed) and volumes.
+Result<std::unique_ptr<SceneVolumes>> load_scene_volumes(Pipeline& pipeline, const Scene& scene,
+                                                         NamedStats& stats);
+
+}  // namespace tr
