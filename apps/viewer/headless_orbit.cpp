@@ -20,10 +20,11 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
     const Vec3 axis = CameraFrame(home, width, height).up();
     FlowControls* flow = view.flow_shown() ? view.flow() : nullptr;
     // Particle-based: each frame waits for its view's first batch, the last for all of them.
-    const bool particles = view.particle_mode() && !flow;
+    const bool particles = view.particle_mode() && !flow && !view.fused();
     const int target = view.particles().target();
     const int batch = std::min(vs.pbvr.batch_for(view.mode()), target);
     std::optional<PbvrFrame> shown;
+    std::optional<FusedFrame> fused;
     double frame_ms = 0, sort_ms = 0, classify_ms = 0, raster_ms = 0;
     std::size_t sorts = 0, drawn = 0;
     std::uint64_t last_seen = 0;
@@ -42,6 +43,12 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
         if (flow) {
             flow->show_layers(last ? flow->num_layers() : static_cast<std::size_t>(i + 1));
             stats = view.render_flow(frame);
+        } else if (view.fused()) {
+            fused = view.draw_fused(camera, width, height, last ? FusedWorker::kWaitFinished : 1);
+            if (!fused || !fused->error.empty()) {
+                return apps::report_error(
+                    make_error(ErrorCode::kInternal, fused ? fused->error : "no fused picture"));
+            }
         } else if (particles) {
             shown = view.draw_particles(camera, width, height, last ? target : batch);
             if (!shown || !shown->error.empty()) {
@@ -83,6 +90,20 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
                       grown.grow_ms);
         flow_text = text;
         cells = grown.volume->mesh.num_tets();
+    }
+    if (fused) {
+        const FusedFrame& f = *fused;
+        std::fprintf(stderr,
+                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), %zu volumes fused "
+                     "(%s): %s, %d pbvr-image repetitions in %d batches, %.1f ms/batch mean, exact "
+                     "%.1f ms, setup %.1f ms, %zu particles, %zu fragments, %zu overlap "
+                     "intervals, %dx%d\n",
+                     frames, frame_ms / frames, 1000.0 * frames / frame_ms, vs.fused.size(),
+                     fused_mode_name(view.fused_mode()).data(),
+                     f.exact ? "exact picture" : "pbvr-image picture", f.repetitions, f.batches,
+                     f.mean_batch_ms, f.exact_ms, f.setup_ms, f.particles, f.fragments,
+                     f.overlap_intervals, width, height);
+        return apps::kExitOk;
     }
     if (particles) {
         const PbvrFrame& f = *shown;

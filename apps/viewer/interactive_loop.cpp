@@ -34,7 +34,10 @@ int run_interactive(GLFWwindow* window, VolumeView& view, ViewerPanel& panel,
         const InputActions actions = input.poll(camera);
         screenshot_requested |= actions.screenshot;
         if (actions.toggle_panel) panel.toggle_panel();
-        if (actions.next_method) {
+        if (actions.next_method && view.fused()) {
+            view.set_fused_mode(
+                static_cast<FusedMode>((static_cast<int>(view.fused_mode()) + 1) % 3));
+        } else if (actions.next_method) {
             view.set_mode(static_cast<ViewMethod>((static_cast<int>(view.mode()) + 1) % 3));
         }
         if (actions.toggle_keys) {
@@ -44,7 +47,7 @@ int run_interactive(GLFWwindow* window, VolumeView& view, ViewerPanel& panel,
         // The pre-integrated table takes 0.1-0.3 s: rebuilt when a drag ends, not during it
         // (the particle-based modes rebuild during drags: their worker takes the latest).
         if (view.tf_dirty() && (!panel.dragging() || view.integrator() == Integrator::kExpTexture ||
-                                view.particle_mode())) {
+                                view.particle_mode() || view.fused())) {
             view.rebuild_transfer_function();
         }
         int fw = 0, fh = 0;

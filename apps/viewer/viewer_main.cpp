@@ -149,6 +149,23 @@ int run(const Args& args) {
     if (!resolved.ok()) return apps::report_error(resolved.error());
     vs.method = resolved->method;
     vs.pbvr = resolved->pbvr;
+    if (!vs.fused.empty()) {
+        // Several volumes: drawn fused on the CPU. projected-tetrahedra (the default) is the
+        // exact fused picture, as `tetrender render` draws such a scene.
+        if (vs.method == ViewMethod::kPbvrObject) {
+            return fail(
+                "pbvr-object: the viewer draws a scene of several volumes with pbvr-image or "
+                "the exact fused picture (projected-tetrahedra); use `tetrender render` for "
+                "pbvr-object");
+        }
+        vs.fused_mode = vs.method == ViewMethod::kPbvrImage ? FusedMode::kPbvrImage
+                        : headless                          ? FusedMode::kExact
+                                                            : FusedMode::kProgressive;
+        std::fprintf(stderr,
+                     "tetrender-view: note: %zu volumes, drawn fused on the CPU (%s): projected "
+                     "tetrahedra cannot order the cells of intersecting meshes\n",
+                     vs.fused.size(), fused_mode_name(vs.fused_mode).data());
+    }
     if (!vs.sort.note.empty())
         std::fprintf(stderr, "tetrender-view: note: %s\n", vs.sort.note.c_str());
     if (vs.scene.flow_volume && vs.scene.flow_volume->context) {
@@ -256,7 +273,9 @@ int main(int argc, char** argv) {
     app.add_option("--sort", args.sort, "auto (default), mpvo, mpvonc, exact, centroid");
     app.add_option("--method", args.method,
                    "projected-tetrahedra (default, OpenGL), pbvr-image or pbvr-object (particles "
-                   "on the CPU, accumulated while the camera is still; default: the scene's)");
+                   "on the CPU, accumulated while the camera is still; default: the scene's). A "
+                   "scene of several volumes is drawn fused on the CPU: projected-tetrahedra is "
+                   "then the exact fused picture, pbvr-image fused particles");
     app.add_option("--repetitions", args.repetitions,
                    "Particle-based: repetitions to accumulate (default: the scene's, else 64 "
                    "headless, 1024 interactively)")

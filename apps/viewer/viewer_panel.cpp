@@ -11,6 +11,51 @@
 
 namespace tr::viewer {
 
+namespace {
+
+// The scalar, colour map, opacity curve and unit distance of one volume's transfer function;
+// `select` switches the scalar. Returns whether the edit changed.
+template <class Select>
+bool draw_transfer_section(const std::vector<std::string>& arrays, const std::string& scalar_name,
+                           TransferEdit& edit, const TransferFunction& tf, const Bounds3& bounds,
+                           OpacityEditor& opacity, Select select) {
+    bool changed = false;
+    if (ImGui::BeginCombo("scalar", scalar_name.c_str())) {
+        for (const std::string& name : arrays) {
+            if (ImGui::Selectable(name.c_str(), name == scalar_name) && name != scalar_name) {
+                select(name);
+            }
+        }
+        ImGui::EndCombo();
+    }
+    const std::string current = edit.colormap.empty() ? "scene" : edit.colormap;
+    if (ImGui::BeginCombo("colour map", current.c_str())) {
+        if (!edit.scene_colors.empty() && ImGui::Selectable("scene", edit.colormap.empty())) {
+            edit.colormap.clear();
+            changed = true;
+        }
+        for (const std::string& name : colormap_names()) {
+            if (ImGui::Selectable(name.c_str(), name == edit.colormap)) {
+                edit.colormap = name;
+                changed = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    ImGui::Text("opacity (drag points; double-click adds, right-click removes)");
+    if (opacity.draw(edit, tf)) changed = true;
+    float unit = static_cast<float>(edit.unit_distance);
+    const double diag = std::max(bounds.diagonal(), 1e-30);
+    if (ImGui::SliderFloat("unit distance", &unit, float(diag * 1e-3), float(diag * 10), "%.4g",
+                           ImGuiSliderFlags_Logarithmic)) {
+        edit.unit_distance = std::max(static_cast<double>(unit), 1e-30);
+        changed = true;
+    }
+    return changed;
+}
+
+}  // namespace
+
 void ViewerPanel::add_frame_ms(double ms) {
     frame_ms_.push_back(ms);
     if (frame_ms_.size() > 30) frame_ms_.pop_front();
@@ -33,7 +78,19 @@ void ViewerPanel::draw(const Camera& camera, bool submit) {
     if (submit) ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
+bool ViewerPanel::dragging() const {
+    if (opacity_.dragging()) return true;
+    for (const OpacityEditor& e : fused_opacity_) {
+        if (e.dragging()) return true;
+    }
+    return false;
+}
+
 void ViewerPanel::draw_panel() {
+    if (view_.fused()) {
+        draw_fused_panel();
+        return;
+    }
     ViewerScene& vs = view_.scene();
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.85f);
@@ -41,37 +98,9 @@ void ViewerPanel::draw_panel() {
     ImGui::Text("%s", vs.volume().mesh.filename().string().c_str());
     ImGui::Text("%zu cells%s", vs.sort.mesh().num_real_tets(),
                 vs.sort.sorted->convexified ? " (+ convexification for the sort)" : "");
-    // Scalar array.
-    if (ImGui::BeginCombo("scalar", vs.scalar_name.c_str())) {
-        for (const std::string& name : vs.arrays) {
-            if (ImGui::Selectable(name.c_str(), name == vs.scalar_name) && name != vs.scalar_name) {
-                view_.select_scalar(name);
-            }
-        }
-        ImGui::EndCombo();
-    }
-    // Colour map.
-    const std::string current = vs.edit.colormap.empty() ? "scene" : vs.edit.colormap;
-    if (ImGui::BeginCombo("colour map", current.c_str())) {
-        if (!vs.edit.scene_colors.empty() && ImGui::Selectable("scene", vs.edit.colormap.empty())) {
-            vs.edit.colormap.clear();
-            view_.mark_dirty();
-        }
-        for (const std::string& name : colormap_names()) {
-            if (ImGui::Selectable(name.c_str(), name == vs.edit.colormap)) {
-                vs.edit.colormap = name;
-                view_.mark_dirty();
-            }
-        }
-        ImGui::EndCombo();
-    }
-    ImGui::Text("opacity (drag points; double-click adds, right-click removes)");
-    if (opacity_.draw(vs.edit, vs.volume().transfer_function)) view_.mark_dirty();
-    float unit = static_cast<float>(vs.edit.unit_distance);
-    const double diag = std::max(vs.sort.mesh().bounds().diagonal(), 1e-30);
-    if (ImGui::SliderFloat("unit distance", &unit, float(diag * 1e-3), float(diag * 10), "%.4g",
-                           ImGuiSliderFlags_Logarithmic)) {
-        vs.edit.unit_distance = std::max(static_cast<double>(unit), 1e-30);
+    if (draw_transfer_section(vs.arrays, vs.scalar_name, vs.edit, vs.volume().transfer_function,
+                              vs.sort.mesh().bounds(), opacity_,
+                              [&](const std::string& name) { view_.select_scalar(name); })) {
         view_.mark_dirty();
     }
     // How the picture is made; projected tetrahedra's sort and integrator.
@@ -161,6 +190,81 @@ void ViewerPanel::draw_particle_section() {
         ImGui::Text("reused %d repetitions; retarget regenerated %zu of %zu cells",
                     f->reused_repetitions, f->retargeted_cells, f->cells);
     }
+}
+
+}  // namespace tr::viewer
+
+namespace tr::viewer {
+
+void ViewerPanel::draw_fused_panel() {
+    ViewerScene& vs = view_.scene();
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.85f);
+    ImGui::Begin("tetrender-view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    std::size_t cells = 0;
+    for (const FusedVolume& fv : vs.fused) cells += fv.mesh().num_real_tets();
+    ImGui::Text("%zu volumes in one space, %zu cells", vs.fused.size(), cells);
+    fused_opacity_.resize(vs.fused.size());
+    for (std::size_t v = 0; v < vs.fused.size(); ++v) {
+        FusedVolume& fv = vs.fused[v];
+        ImGui::PushID(static_cast<int>(v));
+        const std::string header = "volume " + std::to_string(v) + ": " +
+                                   vs.scene.volumes[v].mesh.filename().string() + "###volume";
+        if (ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) {
+            ImGui::Text("%zu cells", fv.mesh().num_real_tets());
+            if (draw_transfer_section(
+                    fv.arrays, fv.scalar_name, fv.edit, vs.scene.volumes[v].transfer_function,
+                    fv.mesh().bounds(), fused_opacity_[v],
+                    [&](const std::string& name) { view_.select_scalar(v, name); })) {
+                view_.mark_dirty(v);
+            }
+        }
+        ImGui::PopID();
+    }
+    ImGui::Separator();
+    if (ImGui::BeginCombo("method", fused_mode_name(view_.fused_mode()).data())) {
+        for (FusedMode m : {FusedMode::kProgressive, FusedMode::kPbvrImage, FusedMode::kExact}) {
+            if (ImGui::Selectable(fused_mode_name(m).data(), m == view_.fused_mode()))
+                view_.set_fused_mode(m);
+        }
+        ImGui::EndCombo();
+    }
+    ImGui::TextDisabled("progressive: a pbvr-image batch while moving, exact when still");
+    ImGui::TextDisabled("(projected tetrahedra cannot draw them: the cells of intersecting");
+    ImGui::TextDisabled(" meshes have no visibility order; exact merges each pixel's segments)");
+    FusedWorker& worker = view_.fused_worker();
+    if (view_.fused_mode() == FusedMode::kPbvrImage) {
+        int target = worker.target();
+        if (ImGui::InputInt("repetitions", &target, 64, 256)) worker.set_target(target);
+    }
+    ImGui::Separator();
+    double frame = 0;
+    for (double ms : frame_ms_) frame += ms;
+    if (!frame_ms_.empty()) frame /= static_cast<double>(frame_ms_.size());
+    ImGui::Text("frame %.1f ms (%.1f fps)", frame, frame > 0 ? 1000.0 / frame : 0.0);
+    const std::optional<FusedFrame>& f = view_.fused_shown();
+    if (!f) {
+        ImGui::Text("drawing the first picture");
+    } else {
+        if (!f->error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", f->error.c_str());
+        const char* state = !view_.fused_current() ? " (previous view)"
+                            : f->finished          ? " (done)"
+                                                   : "";
+        if (f->exact) {
+            ImGui::Text("exact fused picture%s: %.1f ms", state, f->exact_ms);
+            ImGui::Text("%zu fragments, %zu overlap intervals", f->fragments, f->overlap_intervals);
+        } else {
+            ImGui::Text("pbvr-image: %d repetitions%s", f->repetitions, state);
+            ImGui::Text("batch %.1f ms (mean %.1f, %d batches)", f->batch_ms, f->mean_batch_ms,
+                        f->batches);
+            ImGui::Text("%zu particles, seed %llu + batch", f->particles,
+                        static_cast<unsigned long long>(worker.settings().seed));
+        }
+    }
+    if (!view_.status().empty())
+        ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", view_.status().c_str());
+    ImGui::TextDisabled("? lists the keys");
+    ImGui::End();
 }
 
 }  // namespace tr::viewer

@@ -1,13 +1,15 @@
 #pragma once
 // The viewer's Dear ImGui overlay: the panel (array, colour map, opacity curve, unit distance,
 // method, sort and integrator or the particle-based accumulation, the flow volume's section,
-// timings), the seed outline and the keys window.
+// timings; for a scene of several volumes one transfer-function section per volume and the
+// fused modes), the seed outline and the keys window.
 
 #include <apps/viewer/opacity_editor.h>
 #include <apps/viewer/volume_view.h>
 #include <core/camera.h>
 
 #include <deque>
+#include <vector>
 
 namespace tr::viewer {
 
@@ -24,7 +26,7 @@ class ViewerPanel {
     void toggle_panel() { show_panel_ = !show_panel_; }
     void toggle_keys() { show_keys_ = !show_keys_; }
     // Whether an opacity point is being dragged.
-    bool dragging() const { return opacity_.dragging(); }
+    bool dragging() const;
     // A frame's time, for the panel's rolling mean over the last 30.
     void add_frame_ms(double ms);
 
@@ -32,9 +34,12 @@ class ViewerPanel {
     void draw_panel();
     // The particle-based modes: the target, what is accumulated, batch times, kept particles.
     void draw_particle_section();
+    // A scene of several volumes: a transfer-function section per volume, the fused modes.
+    void draw_fused_panel();
 
     VolumeView& view_;
     OpacityEditor opacity_;
+    std::vector<OpacityEditor> fused_opacity_;  // one per volume of a scene of several
     std::deque<double> frame_ms_;
     bool show_panel_ = true, show_keys_ = false;
 };

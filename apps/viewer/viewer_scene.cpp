@@ -17,31 +17,33 @@ bool is_scene_file(const std::string& path) {
     return path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
 }
 
-// The scalar `name` on the sorted mesh (virtual points get 0), and its finite range.
-Result<std::vector<float>> scalar_values(const ViewerScene& vs, const std::string& name,
-                                         int component, double& lo, double& hi) {
+// The scalar `name` on `mesh` (virtual points get 0), and its finite range over the points
+// real tets use. `where`: the file, for errors.
+Result<std::vector<float>> scalar_values(const TetMesh& mesh, const std::string& where,
+                                         const std::string& name, int component, double& lo,
+                                         double& hi) {
     std::vector<float> values;
     if (name == kConstant) {
-        values.assign(vs.sort.mesh().num_points(), 1.0f);
+        values.assign(mesh.num_points(), 1.0f);
     } else {
-        TR_TRY(values, point_scalar(vs.sort.mesh(), name, component));
+        TR_TRY(values, point_scalar(mesh, name, component));
     }
     lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (std::size_t p = 0; p < values.size(); ++p) {
         if (!std::isfinite(values[p])) {
             return make_error(ErrorCode::kInvalidMesh,
                               "array '" + name + "' is not finite at point " + std::to_string(p),
-                              vs.volume().mesh.string());
+                              where);
         }
-        if (p < vs.sort.mesh().num_points() && vs.sort.mesh().num_virtual_tets() == 0) {
+        if (p < mesh.num_points() && mesh.num_virtual_tets() == 0) {
             lo = std::min<double>(lo, values[p]);
             hi = std::max<double>(hi, values[p]);
         }
     }
-    if (vs.sort.mesh().num_virtual_tets() > 0) {
+    if (mesh.num_virtual_tets() > 0) {
         // Only the points real tets use count for the range.
-        for (CellId t = 0; t < vs.sort.mesh().num_real_tets(); ++t) {
-            for (PointId p : vs.sort.mesh().tet(t)) {
+        for (CellId t = 0; t < mesh.num_real_tets(); ++t) {
+            for (PointId p : mesh.tet(t)) {
                 lo = std::min<double>(lo, values[p]);
                 hi = std::max<double>(hi, values[p]);
             }
@@ -50,6 +52,71 @@ Result<std::vector<float>> scalar_values(const ViewerScene& vs, const std::strin
     if (!(hi >= lo)) lo = 0, hi = 1;
     if (hi == lo) lo = hi - 1;  // a constant: opacity ramps up to it
     return values;
+}
+
+Result<std::vector<float>> scalar_values(const ViewerScene& vs, const std::string& name,
+                                         int component, double& lo, double& hi) {
+    return scalar_values(vs.sort.mesh(), vs.volume().mesh.string(), name, component, lo, hi);
+}
+
+// The panel's edit of a volume's transfer function over its scalar's range [lo, hi]: a scene's
+// own points (with --opacity scaling them), or --colormap's ramp; --unit-distance over all.
+// `bounds`: the mesh's, for mesh mode's unit distance.
+TransferEdit initial_edit(const ViewerOptions& options, bool scene_mode, const TransferFunction& tf,
+                          double lo, double hi, const Bounds3& bounds) {
+    TransferEdit edit;
+    edit.lo = lo, edit.hi = hi;
+    if (scene_mode && options.colormap.empty()) {
+        edit.scene_colors = tf.color_points();
+        edit.opacity = tf.opacity_points();
+        edit.unit_distance = tf.unit_distance();
+        edit.lo = std::min(lo, tf.s_min());  // the editor's axis covers the points too
+        edit.hi = std::max(hi, tf.s_max());
+        double largest = 0;
+        for (const OpacityPoint& p : edit.opacity) largest = std::max(largest, p.a);
+        if (options.max_opacity > 0 && largest > 0) {
+            for (OpacityPoint& p : edit.opacity) p.a *= options.max_opacity / largest;
+        }
+    } else {
+        edit.colormap = options.colormap.empty() ? "viridis" : options.colormap;
+        edit.opacity = ramp_opacity(lo, hi, options.max_opacity > 0 ? options.max_opacity : 0.3);
+        edit.unit_distance = scene_mode ? tf.unit_distance() : bounds.diagonal() / 20.0;
+    }
+    if (options.unit_distance > 0) edit.unit_distance = options.unit_distance;
+    if (!(edit.unit_distance > 0)) edit.unit_distance = 1;
+    return edit;
+}
+
+// Each volume of a scene of several: its mesh as loaded, scalar, arrays and edit; each
+// volume's transfer function made from its edit.
+Status load_fused_volumes(ViewerScene& vs, const ViewerOptions& options) {
+    for (std::size_t v = 0; v < vs.scene.volumes.size(); ++v) {
+        SceneVolume& volume = vs.scene.volumes[v];
+        auto name = [&](Error e) {
+            e.message = "volume " + std::to_string(v) + ": " + e.message;
+            return e;
+        };
+        FusedVolume fv;
+        auto loaded = vs.pipeline->mesh(volume);
+        if (!loaded.ok()) return name(loaded.error());
+        fv.loaded = std::move(loaded).value();
+        for (const Field& f : fv.mesh().point_fields()) fv.arrays.push_back(f.name);
+        for (const Field& f : fv.mesh().cell_fields()) fv.arrays.push_back(f.name);
+        fv.arrays.push_back(kConstant);
+        fv.scalar_name = volume.scalar;
+        double lo = 0, hi = 1;
+        auto values =
+            scalar_values(fv.mesh(), volume.mesh.string(), volume.scalar, volume.component, lo, hi);
+        if (!values.ok()) return name(with_where(values.error(), volume.mesh.string()));
+        fv.scalar = std::move(values).value();
+        fv.longest_edge = longest_edge(fv.mesh());
+        fv.edit = initial_edit(options, true, volume.transfer_function, lo, hi, fv.mesh().bounds());
+        auto tf = make_transfer_function(fv.edit);
+        if (!tf.ok()) return name(tf.error());
+        volume.transfer_function = std::move(tf).value();
+        vs.fused.push_back(std::move(fv));
+    }
+    return {};
 }
 
 double remap(double s, double lo, double hi, double new_lo, double new_hi) {
@@ -81,12 +148,6 @@ Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
     const bool scene_mode = is_scene_file(options.input);
     if (scene_mode) {
         TR_TRY(vs.scene, read_scene(options.input));
-        if (vs.scene.volumes.size() != 1) {
-            return make_error(ErrorCode::kUnsupported,
-                              "the viewer shows one volume; this scene has " +
-                                  std::to_string(vs.scene.volumes.size()),
-                              options.input);
-        }
     } else {
         vs.scene.volumes.emplace_back();
         vs.volume().mesh = std::filesystem::absolute(options.input);
@@ -95,6 +156,16 @@ Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
     pipeline_options.progress = apps::terminal_progress();
     vs.pipeline = std::make_unique<Pipeline>(pipeline_options);
     Pipeline& pipeline = *vs.pipeline;
+    const bool fused = vs.scene.volumes.size() > 1;
+    if (fused) {
+        if (options.flow_volume || vs.scene.flow_volume) {
+            return make_error(ErrorCode::kUnsupported,
+                              "a flow volume grows through one mesh; this scene has " +
+                                  std::to_string(vs.scene.volumes.size()) + " volumes",
+                              options.input);
+        }
+        TR_TRY_STATUS(load_fused_volumes(vs, options));
+    }
     TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, pipeline.mesh(vs.volume()));
     const std::string mesh_name = vs.volume().mesh.string();
     for (const Field& f : loaded->tets.point_fields()) vs.arrays.push_back(f.name);
@@ -102,7 +173,7 @@ Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
     vs.arrays.push_back(kConstant);
     const Bounds3 bounds = loaded->tets.bounds();
     if (options.flow_volume) vs.scene.flow_volume = options.flow_volume;
-    if (!vector_arrays(loaded->tets).empty()) {
+    if (!fused && !vector_arrays(loaded->tets).empty()) {
         TR_TRY(FlowDomain domain, pipeline.flow_domain(vs.volume()));
         vs.flow = std::make_unique<FlowDomain>(std::move(domain));
     }
@@ -115,7 +186,8 @@ Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
         }
         TR_TRY_STATUS(check_flow_spec(*vs.flow, *vs.scene.flow_volume));
     }
-    TR_TRY(vs.sort, pipeline.prepared_sort(vs.volume(), options.sort));
+    // Several volumes: volume 0 for the GL renderer only, never convexified.
+    TR_TRY(vs.sort, pipeline.prepared_sort(vs.volume(), fused ? SortMethod::kMpvo : options.sort));
     vs.longest_edge = longest_edge(vs.sort.mesh());
     if (options.size_given || !scene_mode) {
         vs.scene.width = options.width;
@@ -133,29 +205,8 @@ Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
     auto values = scalar_values(vs, vs.scalar_name, component, lo, hi);
     if (!values.ok()) return with_where(values.error(), mesh_name);
     vs.scalar = std::move(values).value();
-    TransferEdit& edit = vs.edit;
-    edit.lo = lo, edit.hi = hi;
-    if (scene_mode && options.colormap.empty()) {
-        const TransferFunction& tf = vs.volume().transfer_function;
-        edit.scene_colors = tf.color_points();
-        edit.opacity = tf.opacity_points();
-        edit.unit_distance = tf.unit_distance();
-        edit.lo = std::min(lo, tf.s_min());  // the editor's axis covers the points too
-        edit.hi = std::max(hi, tf.s_max());
-        double largest = 0;
-        for (const OpacityPoint& p : edit.opacity) largest = std::max(largest, p.a);
-        if (options.max_opacity > 0 && largest > 0) {
-            for (OpacityPoint& p : edit.opacity) p.a *= options.max_opacity / largest;
-        }
-    } else {
-        edit.colormap = options.colormap.empty() ? "viridis" : options.colormap;
-        edit.opacity = ramp_opacity(lo, hi, options.max_opacity > 0 ? options.max_opacity : 0.3);
-        edit.unit_distance =
-            scene_mode ? vs.volume().transfer_function.unit_distance() : bounds.diagonal() / 20.0;
-    }
-    if (options.unit_distance > 0) edit.unit_distance = options.unit_distance;
-    if (!(edit.unit_distance > 0)) edit.unit_distance = 1;
-    TR_TRY(vs.volume().transfer_function, make_transfer_function(edit));
+    vs.edit = initial_edit(options, scene_mode, vs.volume().transfer_function, lo, hi, bounds);
+    TR_TRY(vs.volume().transfer_function, make_transfer_function(vs.edit));
     TR_TRY(vs.opaque, pipeline.opaque(vs.scene));
     return vs;
 }
@@ -169,6 +220,20 @@ Status select_scalar(ViewerScene& vs, const std::string& name) {
     edit.lo = lo, edit.hi = hi;
     vs.scalar = std::move(values);
     vs.scalar_name = name;
+    return {};
+}
+
+Status select_fused_scalar(ViewerScene& vs, std::size_t volume, const std::string& name) {
+    FusedVolume& fv = vs.fused.at(volume);
+    double lo = 0, hi = 1;
+    TR_TRY(std::vector<float> values,
+           scalar_values(fv.mesh(), vs.scene.volumes[volume].mesh.string(), name, -1, lo, hi));
+    TransferEdit& edit = fv.edit;
+    for (OpacityPoint& p : edit.opacity) p.s = remap(p.s, edit.lo, edit.hi, lo, hi);
+    for (ColorPoint& p : edit.scene_colors) p.s = remap(p.s, edit.lo, edit.hi, lo, hi);
+    edit.lo = lo, edit.hi = hi;
+    fv.scalar = std::move(values);
+    fv.scalar_name = name;
     return {};
 }
 

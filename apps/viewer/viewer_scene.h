@@ -3,6 +3,7 @@
 // transfer function the panel edits, the camera and the opaque surfaces. Loaded from a scene
 // file or, for a mesh file, made the way `tetrender render` quick mode makes its scene.
 
+#include <apps/viewer/fused_worker.h>
 #include <apps/viewer/view_method.h>
 #include <apps/viewer/viewer_flow.h>
 #include <core/result.h>
@@ -42,8 +43,25 @@ struct TransferEdit {
     double lo = 0, hi = 1;  // the scalar's range
 };
 
+// One volume of a scene of several (scene.md "Several volumes in one space"), drawn fused on the
+// CPU (fused_worker.h): its mesh as loaded (the fused renderers need no visibility order, so it
+// is never convexified), the arrays that can be its scalar, the scalar in use and its transfer
+// function as the panel edits it.
+struct FusedVolume {
+    std::shared_ptr<const LoadedMesh> loaded;
+    std::vector<std::string> arrays;
+    std::string scalar_name;
+    std::vector<float> scalar;  // one per loaded->tets point
+    TransferEdit edit;
+    double longest_edge = 1;
+
+    const TetMesh& mesh() const { return loaded->tets; }
+};
+
 struct ViewerScene {
-    Scene scene;  // camera, size, background; volumes[0].transfer_function as loaded
+    // Camera, size, background; each volume's transfer function (volumes[v].transfer_function:
+    // as loaded, then as the panel edits it).
+    Scene scene;
     // What was loaded and prepared (mesh, adjacency, convexification), kept for the session.
     std::unique_ptr<Pipeline> pipeline;
     PreparedSort sort;                // the mesh (maybe convexified) and adjacency sorted
@@ -60,6 +78,11 @@ struct ViewerScene {
     // and the particle-based modes' settings.
     ViewMethod method = ViewMethod::kProjectedTetrahedra;
     PbvrSettings pbvr;
+    // A scene of several volumes: each one (the fields above then hold volume 0, prepared for
+    // the GL renderer, which does not draw it: cells of intersecting meshes have no order).
+    // Empty for one volume.
+    std::vector<FusedVolume> fused;
+    FusedMode fused_mode = FusedMode::kProgressive;  // how they are drawn at start
 
     SceneVolume& volume() { return scene.volumes[0]; }
     const SceneVolume& volume() const { return scene.volumes[0]; }
@@ -67,12 +90,17 @@ struct ViewerScene {
 
 // Loads everything through the pipeline, as `tetrender render` does. Errors as it words them
 // (read_scene, loading, an unknown array listing the available ones, a flow volume's vectors
-// that are no vector array of the mesh); kUnsupported for a scene of several volumes.
+// that are no vector array of the mesh; with several volumes, prefixed "volume i: "). A scene
+// of several volumes fills `fused` (each volume's mesh, scalar, edit; --colormap, --opacity and
+// --unit-distance apply to each); kUnsupported for a flow volume with several volumes.
 Result<ViewerScene> load_viewer_scene(const ViewerOptions& options);
 
 // Switches to array `name` (a point or cell array of the mesh, magnitude of vectors): the
 // scalar and the transfer function's range follow, opacity points keep their relative places.
 Status select_scalar(ViewerScene& scene, const std::string& name);
+
+// Switches fused volume `volume` to array `name`, as select_scalar does for one volume.
+Status select_fused_scalar(ViewerScene& scene, std::size_t volume, const std::string& name);
 
 // The transfer function of `edit`.
 Result<TransferFunction> make_transfer_function(const TransferEdit& edit);

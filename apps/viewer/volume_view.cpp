@@ -20,6 +20,89 @@ VolumeView::VolumeView(ViewerScene& scene, gl::GlTetRenderer& renderer, Integrat
         flow_ = std::make_unique<FlowControls>(*vs_.flow, vs_.opaque, vs_.scene.flow_volume,
                                                integrator_, verbose);
     }
+    if (!vs_.fused.empty()) {
+        std::vector<FusedMesh> meshes;
+        for (const FusedVolume& fv : vs_.fused) {
+            meshes.push_back({&fv.mesh(), fv.longest_edge});
+            fused_state_.push_back(
+                {std::make_shared<const std::vector<float>>(fv.scalar), nullptr, 0});
+        }
+        for (std::size_t v = 0; v < vs_.fused.size(); ++v) {
+            fused_state_[v].tf =
+                std::make_shared<const TransferFunction>(vs_.scene.volumes[v].transfer_function);
+        }
+        fused_dirty_.assign(vs_.fused.size(), false);
+        fused_mode_ = scene.fused_mode;
+        fused_ = std::make_unique<FusedWorker>(std::move(meshes), vs_.opaque.layers(), vs_.pbvr);
+    }
+}
+
+void VolumeView::set_wake(std::function<void()> wake) {
+    if (fused_) fused_->set_on_frame(wake);
+    pbvr_.set_on_frame(std::move(wake));
+}
+
+void VolumeView::set_fused_mode(FusedMode mode) {
+    if (mode == fused_mode_) return;
+    fused_mode_ = mode;
+    invalidate();
+}
+
+void VolumeView::mark_dirty(std::size_t volume) {
+    fused_dirty_.at(volume) = true;
+    tf_dirty_ = true;
+}
+
+void VolumeView::select_scalar(std::size_t volume, const std::string& name) {
+    const Status s = select_fused_scalar(vs_, volume, name);
+    if (s.ok()) {
+        fused_state_[volume].scalar =
+            std::make_shared<const std::vector<float>>(vs_.fused[volume].scalar);
+        ++fused_version_;
+        mark_dirty(volume);
+        status_.clear();
+    } else {
+        status_ = s.error().message;
+    }
+}
+
+bool VolumeView::FusedKey::operator==(const FusedKey& o) const {
+    const Camera &a = camera, &b = o.camera;
+    return mode == o.mode && a.position == b.position && a.focal_point == b.focal_point &&
+           a.view_up == b.view_up && a.view_angle == b.view_angle && a.parallel == b.parallel &&
+           a.parallel_scale == b.parallel_scale && width == o.width && height == o.height &&
+           version == o.version;
+}
+
+std::optional<FusedFrame> VolumeView::draw_fused(const Camera& camera, int width, int height,
+                                                 int min_repetitions) {
+    const FusedKey key{fused_mode_, camera, width, height, fused_version_};
+    if (!fused_key_ || !(key == *fused_key_)) {
+        FusedRequest request;
+        request.mode = fused_mode_;
+        request.camera = camera;
+        request.width = width;
+        request.height = height;
+        request.volumes = fused_state_;
+        request.background = vs_.scene.background;
+        fused_requested_id_ = fused_->request(std::move(request));
+        fused_key_ = key;
+    }
+    std::optional<FusedFrame> latest = min_repetitions > 0
+                                           ? fused_->wait_for(fused_requested_id_, min_repetitions)
+                                           : fused_->latest();
+    const bool newer =
+        latest && (!fused_shown_ || latest->request_id != fused_shown_->request_id ||
+                   latest->repetitions != fused_shown_->repetitions ||
+                   latest->exact != fused_shown_->exact || latest->error != fused_shown_->error);
+    if (newer) {
+        if (latest->image) {
+            renderer_.show_image(*latest->image);
+            active_ = &renderer_;
+        }
+        fused_shown_ = std::move(latest);
+    }
+    return fused_shown_;
 }
 
 SortedOrder VolumeView::current_order(const Camera& camera, bool exact) {
@@ -143,6 +226,11 @@ bool VolumeView::draw(const Camera& camera, int width, int height) {
         }
         return flow_->settled();
     }
+    if (fused()) {
+        // The worker's next picture wakes the window loop (set_wake).
+        draw_fused(camera, width, height, 0);
+        return true;
+    }
     if (particle_mode()) {
         // The worker's next batch wakes the window loop (set_wake).
         draw_particles(camera, width, height, 0);
@@ -161,6 +249,22 @@ bool VolumeView::draw(const Camera& camera, int width, int height) {
 
 void VolumeView::rebuild_transfer_function() {
     tf_dirty_ = false;
+    if (fused()) {
+        for (std::size_t v = 0; v < fused_dirty_.size(); ++v) {
+            if (!fused_dirty_[v]) continue;
+            fused_dirty_[v] = false;
+            auto tf = make_transfer_function(vs_.fused[v].edit);
+            if (!tf.ok()) {
+                status_ = "volume " + std::to_string(v) + ": " + tf.error().message;
+                continue;
+            }
+            vs_.scene.volumes[v].transfer_function = std::move(tf).value();
+            fused_state_[v].tf =
+                std::make_shared<const TransferFunction>(vs_.scene.volumes[v].transfer_function);
+            fused_state_[v].tf_version = ++fused_version_;
+        }
+        return;
+    }
     auto tf = make_transfer_function(vs_.edit);
     if (!tf.ok()) {
         status_ = tf.error().message;

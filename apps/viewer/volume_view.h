@@ -1,10 +1,12 @@
 #pragma once
 // What the viewer draws each frame: the mesh's volume in the sort worker's latest order for the
 // view, or the particle-based picture the PBVR worker has accumulated for it, or the flow
-// volume; the transfer function rebuilt when the panel changed it; the frame redrawn only when
-// something it shows changed; and which GL renderer holds the last frame.
+// volume, or (a scene of several volumes) the fused picture the fused worker has drawn; the
+// transfer function rebuilt when the panel changed it; the frame redrawn only when something it
+// shows changed; and which GL renderer holds the last frame.
 
 #include <apps/viewer/flow_controls.h>
+#include <apps/viewer/fused_worker.h>
 #include <apps/viewer/pbvr_worker.h>
 #include <apps/viewer/sort_worker.h>
 #include <apps/viewer/viewer_scene.h>
@@ -75,7 +77,29 @@ class VolumeView {
     }
     // Called from the worker thread when a batch is accumulated (glfwPostEmptyEvent); set
     // before the first draw.
-    void set_wake(std::function<void()> wake) { pbvr_.set_on_frame(std::move(wake)); }
+    void set_wake(std::function<void()> wake);
+
+    // A scene of several volumes (ViewerScene::fused): every frame is the fused worker's
+    // picture, in fused_mode() (mode() and the sort are then unused).
+    bool fused() const { return fused_ != nullptr; }
+    FusedMode fused_mode() const { return fused_mode_; }
+    void set_fused_mode(FusedMode mode);  // the next draw() asks for it
+    FusedWorker& fused_worker() { return *fused_; }
+    // The fused picture of `camera` at width x height: asks the worker for this view when it
+    // (or the mode, a volume's scalar or transfer function) differs from the last one asked;
+    // with `min_repetitions` > 0 waits for that many repetitions or the exact picture
+    // (FusedWorker::kWaitFinished: the request's last picture); shows the latest picture when
+    // it is newer than the one shown. Returns the frame shown (none yet: nullopt).
+    std::optional<FusedFrame> draw_fused(const Camera& camera, int width, int height,
+                                         int min_repetitions);
+    const std::optional<FusedFrame>& fused_shown() const { return fused_shown_; }
+    bool fused_current() const {
+        return fused_shown_ && fused_shown_->request_id == fused_requested_id_;
+    }
+    // Edits of fused volume `volume`'s edit (ViewerScene::fused) mark it dirty; the next
+    // rebuild_transfer_function() remakes its transfer function (and so the next draw restarts).
+    void mark_dirty(std::size_t volume);
+    void select_scalar(std::size_t volume, const std::string& name);
 
     // The renderer holding the last frame (read_image, blit_to_default, overlay).
     gl::GlTetRenderer& active() { return *active_; }
@@ -84,6 +108,7 @@ class VolumeView {
     // current integrator (errors go to status()).
     void mark_dirty() { tf_dirty_ = true; }
     bool tf_dirty() const { return tf_dirty_; }
+    // A scene of several volumes: each dirty volume's.
     void rebuild_transfer_function();
 
     // What the panel sets and shows.
@@ -130,6 +155,23 @@ class VolumeView {
     std::shared_ptr<const std::vector<float>> pbvr_scalar_;
     int pbvr_tf_version_ = -1, pbvr_scalar_version_ = -1;
     std::optional<PbvrFrame> pbvr_shown_;
+    // The fused worker (several volumes), what it was last asked for, and the copies it draws
+    // from (per volume; versions from fused_version_, increasing).
+    std::unique_ptr<FusedWorker> fused_;
+    FusedMode fused_mode_ = FusedMode::kProgressive;
+    std::vector<FusedVolumeState> fused_state_;
+    std::vector<bool> fused_dirty_;
+    std::uint64_t fused_version_ = 0;  // any volume's scalar or transfer function
+    struct FusedKey {
+        FusedMode mode;
+        Camera camera;
+        int width, height;
+        std::uint64_t version;
+        bool operator==(const FusedKey& o) const;
+    };
+    std::optional<FusedKey> fused_key_;
+    std::uint64_t fused_requested_id_ = 0;
+    std::optional<FusedFrame> fused_shown_;
     std::string status_;
     gl::GlFrameStats last_stats_;
     // What the last interactive frame showed.

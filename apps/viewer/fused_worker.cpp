@@ -1,0 +1,260 @@
+#include <apps/viewer/fused_worker.h>
+#include <project/pbvr_common.h>
+#include <project/pbvr_image.h>
+#include <project/segment_merge.h>
+#include <project/segment_shader.h>
+
+#include <algorithm>
+#include <chrono>
+#include <new>
+#include <pipeline/loaded_mesh.h>
+
+namespace tr::viewer {
+
+std::string_view fused_mode_name(FusedMode mode) {
+    switch (mode) {
+        case FusedMode::kProgressive:
+            return "progressive";
+        case FusedMode::kPbvrImage:
+            return "pbvr-image";
+        case FusedMode::kExact:
+            return "exact";
+    }
+    return "?";
+}
+
+// A volume's shader for the exact picture (the pre-integrated table, as `tetrender render`
+// makes it), kept while the volume's transfer function stays.
+struct FusedWorker::ShaderCache {
+    std::shared_ptr<const TransferFunction> tf;  // the shader refers to it
+    std::uint64_t tf_version = 0;
+    SegmentShader shader;
+};
+
+// The request being drawn. Lives in the worker's loop and never moves: `scene` points into it.
+struct FusedWorker::Job {
+    FusedRequest request;
+    std::uint64_t id = 0;
+    bool fresh = false;   // begin() not yet called
+    bool active = false;  // a request has begun
+    std::optional<CameraFrame> frame;
+    OpaqueLayer opaque;
+    VolumeScene scene;
+    std::vector<double> sum;  // sum over batches of the batch's mean x its repetitions
+    std::shared_ptr<const Image> exact_image;
+    FusedFrame stats;
+    double total_batch_ms = 0;
+};
+
+FusedWorker::FusedWorker(std::vector<FusedMesh> meshes, std::vector<OpaqueSurface> opaque,
+                         PbvrSettings settings)
+    : meshes_(std::move(meshes)),
+      opaque_(std::move(opaque)),
+      settings_(std::move(settings)),
+      target_(std::clamp(settings_.repetitions, 1, kMaxRepetitions)) {
+    shaders_.resize(meshes_.size());
+    thread_ = std::thread([this] { run(); });
+}
+
+FusedWorker::~FusedWorker() {
+    {
+        std::lock_guard lock(mutex_);
+        stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+}
+
+std::uint64_t FusedWorker::request(FusedRequest request) {
+    std::uint64_t id;
+    {
+        std::lock_guard lock(mutex_);
+        id = ++next_id_;
+        pending_.emplace(std::move(request), id);
+    }
+    wake_.notify_all();
+    return id;
+}
+
+void FusedWorker::set_target(int repetitions) {
+    {
+        std::lock_guard lock(mutex_);
+        target_ = std::clamp(repetitions, 1, kMaxRepetitions);
+        if (latest_ && latest_->mode == FusedMode::kPbvrImage && latest_->error.empty())
+            latest_->finished = latest_->repetitions >= target_;
+    }
+    wake_.notify_all();
+    done_.notify_all();
+}
+
+int FusedWorker::target() const {
+    std::lock_guard lock(mutex_);
+    return target_;
+}
+
+std::optional<FusedFrame> FusedWorker::latest() const {
+    std::lock_guard lock(mutex_);
+    return latest_;
+}
+
+FusedFrame FusedWorker::wait_for(std::uint64_t request_id, int repetitions) {
+    std::unique_lock lock(mutex_);
+    done_.wait(lock, [&] {
+        if (!latest_) return false;
+        if (latest_->request_id > request_id) return true;
+        return latest_->request_id == request_id &&
+               (latest_->finished || !latest_->error.empty() ||
+                (repetitions < kWaitFinished &&
+                 (latest_->exact || latest_->repetitions >= repetitions)));
+    });
+    return *latest_;
+}
+
+bool FusedWorker::has_work(const Job& job, int target) const {
+    if (!job.active || !job.stats.error.empty()) return false;
+    switch (job.request.mode) {
+        case FusedMode::kExact:
+            return !job.stats.exact;
+        case FusedMode::kPbvrImage:
+            return job.stats.repetitions < target;
+        case FusedMode::kProgressive:
+            return !job.stats.exact;
+    }
+    return false;
+}
+
+void FusedWorker::run() {
+    Job job;
+    for (;;) {
+        int target = 0;
+        {
+            std::unique_lock lock(mutex_);
+            wake_.wait(lock,
+                       [&] { return stop_ || pending_.has_value() || has_work(job, target_); });
+            if (stop_) return;
+            if (pending_) {
+                job.request = std::move(pending_->first);
+                job.id = pending_->second;
+                job.fresh = true;
+                pending_.reset();
+            }
+            target = target_;
+        }
+        try {
+            if (job.fresh) begin(job);
+            step(job, target);
+        } catch (const std::bad_alloc&) {
+            for (auto& s : shaders_) s.reset();
+            job.stats.error = "out of memory while drawing the fused picture";
+        }
+        publish(job);
+    }
+}
+
+void FusedWorker::begin(Job& job) {
+    const auto start = std::chrono::steady_clock::now();
+    job.fresh = false;
+    job.active = true;
+    const FusedRequest& r = job.request;
+    job.frame.emplace(r.camera, r.width, r.height);
+    job.opaque = OpaqueLayer{};
+    if (!opaque_.empty()) job.opaque = render_opaque(opaque_, *job.frame, r.background);
+    job.scene = VolumeScene{};
+    for (std::size_t v = 0; v < meshes_.size(); ++v) {
+        job.scene.volumes.push_back(
+            {meshes_[v].mesh, *r.volumes[v].scalar, r.volumes[v].tf.get(), nullptr});
+    }
+    job.scene.camera = &*job.frame;
+    job.scene.background = r.background;
+    if (!job.opaque.depth.empty()) {
+        job.scene.opaque_color = &job.opaque.color;
+        job.scene.opaque_depth = &job.opaque.depth;
+    }
+    job.sum.assign(static_cast<std::size_t>(r.width) * r.height * 3, 0.0);
+    job.exact_image.reset();
+    job.stats = FusedFrame{};
+    job.stats.request_id = job.id;
+    job.stats.mode = r.mode;
+    job.total_batch_ms = 0;
+    job.stats.setup_ms = ms_since(start);
+}
+
+void FusedWorker::step(Job& job, int target) {
+    const auto start = std::chrono::steady_clock::now();
+    const FusedRequest& r = job.request;
+    FusedFrame& stats = job.stats;
+    const bool exact =
+        r.mode == FusedMode::kExact || (r.mode == FusedMode::kProgressive && stats.repetitions > 0);
+    if (exact) {
+        // Every volume's shader, as the pipeline makes it for the segment merge.
+        for (std::size_t v = 0; v < meshes_.size(); ++v) {
+            const FusedVolumeState& state = r.volumes[v];
+            std::unique_ptr<ShaderCache>& cache = shaders_[v];
+            if (!cache || cache->tf_version != state.tf_version || cache->tf != state.tf) {
+                cache.reset();
+                cache.reset(new ShaderCache{
+                    state.tf, state.tf_version,
+                    SegmentShader(*state.tf, Integrator::kPreintegrated, meshes_[v].longest_edge)});
+            }
+            job.scene.volumes[v].shader = &cache->shader;
+        }
+        SegmentMergeStats merge;
+        job.exact_image = std::make_shared<const Image>(render_segment_merge(job.scene, &merge));
+        stats.exact = true;
+        stats.fragments = merge.fragments;
+        stats.overlap_intervals = merge.overlap_intervals;
+        stats.exact_ms = ms_since(start);
+        return;
+    }
+    // pbvr-image: no shaders for several volumes (their segments overlap on a ray: the
+    // particle's own colour is drawn), as the pipeline renders them.
+    for (VolumeData& v : job.scene.volumes) v.shader = nullptr;
+    const double per_repetition = static_cast<double>(r.width) * r.height;
+    const int most = static_cast<int>(
+        std::clamp(kMaxParticleSamples / per_repetition, 1.0, static_cast<double>(kMaxBatch)));
+    const int batch = settings_.batch_for(ViewMethod::kPbvrImage);
+    const int repetitions = r.mode == FusedMode::kProgressive
+                                ? std::clamp(batch, 1, most)
+                                : std::clamp(std::min(batch, target - stats.repetitions), 1, most);
+    ImagePbvrOptions options = settings_.image;
+    options.repetitions = repetitions;
+    options.seed = settings_.seed + static_cast<std::uint64_t>(stats.batches);
+    ImagePbvrStats image_stats;
+    const Image image = render_image_pbvr(job.scene, options, &image_stats);
+    stats.particles += image_stats.particles;
+    stats.fragments = image_stats.fragments;
+    for (std::size_t p = 0; p < image.pixels.size(); ++p) {
+        for (int k = 0; k < 3; ++k) job.sum[3 * p + k] += repetitions * double(image.pixels[p][k]);
+    }
+    stats.repetitions += repetitions;
+    ++stats.batches;
+    stats.batch_ms = ms_since(start);
+    job.total_batch_ms += stats.batch_ms;
+    stats.mean_batch_ms = job.total_batch_ms / stats.batches;
+}
+
+void FusedWorker::publish(Job& job) {
+    FusedFrame& stats = job.stats;
+    if (job.exact_image) {
+        stats.image = job.exact_image;
+    } else if (stats.repetitions > 0) {
+        const FusedRequest& r = job.request;
+        auto image = std::make_shared<Image>(r.width, r.height);
+        const double inverse = 1.0 / stats.repetitions;
+        for (std::size_t p = 0; p < image->pixels.size(); ++p) {
+            image->pixels[p] = Vec3f(static_cast<float>(job.sum[3 * p] * inverse),
+                                     static_cast<float>(job.sum[3 * p + 1] * inverse),
+                                     static_cast<float>(job.sum[3 * p + 2] * inverse));
+        }
+        stats.image = std::move(image);
+    }
+    {
+        std::lock_guard lock(mutex_);
+        stats.finished = !has_work(job, target_);
+        latest_ = stats;
+    }
+    done_.notify_all();
+    if (on_frame_) on_frame_();
+}
+
+}  // namespace tr::viewer

@@ -1,0 +1,140 @@
+#pragma once
+// The viewer's fused rendering of a scene of several volumes (scene.md "Several volumes in one
+// space") in a worker thread, on the CPU, through the library as `tetrender render` draws such
+// a scene: image-space PBVR over all volumes at once (project/pbvr_image.h: their particles
+// compete for the nearest place), a batch of repetitions at a time accumulated while the view
+// stays, and the exact fused picture (project/segment_merge.h: every pixel's segments of every
+// volume merged by depth, overlaps integrated with summed extinction and emission). Projected
+// tetrahedra cannot draw such a scene: the cells of intersecting meshes have no visibility order.
+//
+// A new request (camera, size, mode, any volume's scalar or transfer function) replaces the one
+// in progress after its current batch or exact picture; the window never waits: it shows the
+// latest picture.
+
+#include <apps/viewer/view_method.h>
+#include <core/camera.h>
+#include <core/image.h>
+#include <mesh/tet_mesh.h>
+#include <project/opaque_geometry.h>
+#include <project/transfer_function.h>
+
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+namespace tr::viewer {
+
+enum class FusedMode {
+    kProgressive,  // one batch of pbvr-image (a quick picture while the camera moves), then,
+                   // when no newer view is asked for, the exact picture
+    kPbvrImage,    // pbvr-image batches accumulated up to the target's repetitions
+    kExact,        // the exact fused picture alone
+};
+
+// "progressive", "pbvr-image", "exact".
+std::string_view fused_mode_name(FusedMode mode);
+
+// A volume's mesh (its real tets are drawn) and its longest edge (cpu_renderer.h), for the exact
+// picture's shader.
+struct FusedMesh {
+    const TetMesh* mesh = nullptr;
+    double longest_edge = 1;
+};
+
+// A volume's scalar (one per mesh point) and transfer function for one request.
+struct FusedVolumeState {
+    std::shared_ptr<const std::vector<float>> scalar;
+    std::shared_ptr<const TransferFunction> tf;
+    std::uint64_t tf_version = 0;  // changes whenever `tf` does (the exact picture's shader)
+};
+
+struct FusedRequest {
+    FusedMode mode = FusedMode::kProgressive;
+    Camera camera;
+    int width = 0, height = 0;              // the picture, >= 1 each
+    std::vector<FusedVolumeState> volumes;  // one per mesh, in order
+    Vec3 background{0.0};
+};
+
+// The picture so far of one request.
+struct FusedFrame {
+    std::shared_ptr<const Image> image;  // the exact picture once drawn, else the pbvr-image mean
+    std::uint64_t request_id = 0;
+    FusedMode mode = FusedMode::kProgressive;
+    int repetitions = 0;  // pbvr-image repetitions accumulated
+    int batches = 0;
+    bool exact = false;  // `image` is the exact fused picture
+    double batch_ms = 0, mean_batch_ms = 0;
+    double exact_ms = 0;  // the exact picture: shaders made and segments merged
+    double setup_ms = 0;  // the opaque layer
+    std::size_t particles = 0, fragments = 0, overlap_intervals = 0;
+    bool finished = false;  // nothing more to draw for this request until a new one
+    std::string error;      // a batch failed (out of memory): nothing more for this request
+};
+
+class FusedWorker {
+  public:
+    // The meshes and the surfaces `opaque` points to must outlive the worker. `settings`: the
+    // particle-based settings (target repetitions, batch, seed, pbvr-image's options).
+    FusedWorker(std::vector<FusedMesh> meshes, std::vector<OpaqueSurface> opaque,
+                PbvrSettings settings);
+    ~FusedWorker();  // waits for the batch in progress
+    FusedWorker(const FusedWorker&) = delete;
+    FusedWorker& operator=(const FusedWorker&) = delete;
+
+    // Asks for `request`'s view (request.volumes: one per mesh); returns its id (increasing).
+    std::uint64_t request(FusedRequest request);
+
+    // pbvr-image's target repetitions (clamped to [1, kMaxRepetitions]); no restart.
+    void set_target(int repetitions);
+    int target() const;
+
+    std::optional<FusedFrame> latest() const;
+
+    // Blocks until the frame of `request_id` has at least `repetitions` repetitions or the exact
+    // picture (or is finished or failed), or a later request has a frame; returns that frame.
+    // kWaitFinished waits for the request's last picture.
+    static constexpr int kWaitFinished = kMaxRepetitions + 1;
+    FusedFrame wait_for(std::uint64_t request_id, int repetitions);
+
+    // Called from the worker thread after each picture is published. Set before the first
+    // request.
+    void set_on_frame(std::function<void()> on_frame) { on_frame_ = std::move(on_frame); }
+
+    const PbvrSettings& settings() const { return settings_; }
+    std::size_t num_volumes() const { return meshes_.size(); }
+
+  private:
+    struct Job;
+    struct ShaderCache;
+    void run();
+    void begin(Job& job);
+    bool has_work(const Job& job, int target) const;
+    void step(Job& job, int target);  // one batch, or the exact picture
+    void publish(Job& job);
+
+    const std::vector<FusedMesh> meshes_;
+    const std::vector<OpaqueSurface> opaque_;
+    const PbvrSettings settings_;
+    std::function<void()> on_frame_;
+
+    mutable std::mutex mutex_;
+    std::condition_variable wake_, done_;
+    std::optional<std::pair<FusedRequest, std::uint64_t>> pending_;
+    std::optional<FusedFrame> latest_;
+    std::uint64_t next_id_ = 0;
+    int target_;
+    bool stop_ = false;
+
+    std::vector<std::unique_ptr<ShaderCache>> shaders_;  // worker thread only: per volume
+    std::thread thread_;                                 // last: started when the rest is ready
+};
+
+}  // namespace tr::viewer
