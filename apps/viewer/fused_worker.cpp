@@ -44,6 +44,7 @@ struct FusedWorker::Job {
     std::shared_ptr<const Image> exact_image;
     FusedFrame stats;
     double total_batch_ms = 0;
+    std::chrono::steady_clock::time_point published;  // the last picture
 };
 
 FusedWorker::FusedWorker(std::vector<FusedMesh> meshes, std::vector<OpaqueSurface> opaque,
@@ -131,6 +132,14 @@ void FusedWorker::run() {
             std::unique_lock lock(mutex_);
             wake_.wait(lock,
                        [&] { return stop_ || pending_.has_value() || has_work(job, target_); });
+            // Progressive: the exact picture (which cannot be interrupted) only once the camera
+            // has been still for kStillDelay since the quick picture, so that a drag never
+            // waits for one.
+            if (!stop_ && !pending_ && job.request.mode == FusedMode::kProgressive &&
+                job.stats.repetitions > 0) {
+                wake_.wait_until(lock, job.published + kStillDelay,
+                                 [&] { return stop_ || pending_.has_value(); });
+            }
             if (stop_) return;
             if (pending_) {
                 job.request = std::move(pending_->first);
@@ -235,6 +244,7 @@ void FusedWorker::step(Job& job, int target) {
 
 void FusedWorker::publish(Job& job) {
     FusedFrame& stats = job.stats;
+    job.published = std::chrono::steady_clock::now();
     if (job.exact_image) {
         stats.image = job.exact_image;
     } else if (stats.repetitions > 0) {

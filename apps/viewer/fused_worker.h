@@ -18,6 +18,7 @@
 #include <project/opaque_geometry.h>
 #include <project/transfer_function.h>
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -33,7 +34,7 @@ namespace tr::viewer {
 
 enum class FusedMode {
     kProgressive,  // one batch of pbvr-image (a quick picture while the camera moves), then,
-                   // when no newer view is asked for, the exact picture
+                   // when no newer view has been asked for within kStillDelay, the exact picture
     kPbvrImage,    // pbvr-image batches accumulated up to the target's repetitions
     kExact,        // the exact fused picture alone
 };
@@ -81,6 +82,10 @@ struct FusedFrame {
 
 class FusedWorker {
   public:
+    // Progressive mode: how long the view must stay after the quick picture before the exact
+    // one (which cannot be interrupted) is begun.
+    static constexpr std::chrono::milliseconds kStillDelay{200};
+
     // The meshes and the surfaces `opaque` points to must outlive the worker. `settings`: the
     // particle-based settings (target repetitions, batch, seed, pbvr-image's options).
     FusedWorker(std::vector<FusedMesh> meshes, std::vector<OpaqueSurface> opaque,

@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -177,6 +178,43 @@ TEST(ViewerFused, PbvrImageConvergesToTheExactPicture) {
     const Image rendered = read_pfm(s.dir + "/render_pbvr.pfm");
     foreground_psnr(rendered, exact, "render R = 64");
     EXPECT_EQ(compare_images(one, rendered, kBackground).max_difference, 0.0);
+}
+
+// The interactive loop and the panel (one section per volume) run on such a scene; what the
+// viewer does not draw for it, and a volume's missing array, are refused in one line naming why.
+TEST(ViewerFused, InteractivePanelAndRefusals) {
+    if (!require_xvfb()) GTEST_SKIP() << "no xvfb-run";
+    const FusedScene s;
+    auto run = run_viewer(shell_quote(s.scene) + " --exit-after-frames 20");
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.err.find("drawn fused on the CPU (progressive)"), std::string::npos) << run.err;
+    const std::string panel = s.dir + "/panel.pfm";
+    run = run_viewer(shell_quote(s.scene) + " --panel-in-screenshot --screenshot " +
+                     shell_quote(panel));
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    const Image exact = render_exact(s.scene, s.dir + "/render.pfm");
+    // The panel covers part of the picture.
+    EXPECT_GT(compare_images(read_pfm(panel), exact, kBackground).max_difference, 0.1);
+
+    run = run_viewer(shell_quote(s.scene) + " --method pbvr-object --screenshot " +
+                     shell_quote(s.dir + "/object.pfm"));
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.err.find("pbvr-object: the viewer draws a scene of several volumes with"),
+              std::string::npos)
+        << run.err;
+    std::string missing = s.scene;
+    {
+        std::ifstream in(s.scene);
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        text.replace(text.find("\"wave\""), 6, "\"nope\"");
+        missing = s.dir + "/missing.json";
+        std::ofstream(missing) << text;
+    }
+    run = run_viewer(shell_quote(missing) + " --screenshot " + shell_quote(s.dir + "/m.pfm"));
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.err.find("volume 1: "), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("nope"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("solid.vtu"), std::string::npos) << run.err;
 }
 
 // The fused worker on the scene loaded as the viewer loads it.
