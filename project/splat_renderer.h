@@ -1,0 +1,59 @@
+#pragma once
+// Splatting (texture-mapping paper, 3.1): a field given at points — the lattice points of a
+// regular grid, or the points of any mesh — rendered without cells. Each point's value is
+// classified by the transfer function (extinction kappa and colour c), and spread by the
+// reconstruction kernel of project/splat_kernel.h scaled to the point spacing h: along a pixel
+// ray passing at distance rho from the point, the point adds the optical depth
+//     tau = kappa h f(rho / h)
+// (f the kernel's footprint, its line integral in lattice units), so a constant field's optical
+// depth along any ray is kappa times the length times the kernel's lattice sum (within 0.53% of 1
+// for the Crawfis-Max cubic). The splat faces each pixel's ray (rho is the distance from the point
+// to that ray: right under perspective, as the paper's "square facing the ray to its centre"),
+// and is composited whole, alpha = 1 - exp(-tau), colour c alpha, back to front by the distance
+// of the points along the view (the paper's order; the per-splat compositing the paper notes
+// makes colours jump when that order changes during a rotation).
+//
+// Opaque geometry: a splat is drawn on a pixel only where its centre lies in front of the
+// pixel's surface. Splats whose support reaches behind a perspective eye are not drawn.
+
+#include <core/camera.h>
+#include <core/image.h>
+#include <project/splat_kernel.h>
+#include <project/transfer_function.h>
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace tr {
+
+struct SplatInputs {
+    std::span<const Vec3> points;
+    std::span<const float> scalar;  // one per point
+    double spacing = 1.0;           // h: the lattice spacing the kernel is scaled to (> 0)
+    const TransferFunction* tf = nullptr;
+    const SplatFootprint* footprint = nullptr;  // the kernel's table
+    const CameraFrame* camera = nullptr;
+    Vec3 background{0.0};
+    // Opaque geometry already drawn (project/opaque_geometry.h), or null.
+    const Image* opaque_color = nullptr;
+    const std::vector<double>* opaque_depth = nullptr;
+};
+
+struct SplatStats {
+    std::size_t splats_drawn = 0;  // points with a non-zero extinction in view
+    std::size_t fragments = 0;     // (splat, pixel) pairs composited
+    double raster_ms = 0;
+};
+
+// The picture. Preconditions: scalar.size() == points.size(), spacing > 0, opaque buffers of
+// the camera's size (checked: a wrong call would read out of bounds). Cost: O(points log points)
+// for the order plus the splats' footprints in pixels; memory O(points + pixels).
+Image render_splats(const SplatInputs& in, SplatStats* stats = nullptr);
+
+// The spacing of `points` if they were a lattice filling their bounds: (volume / count)^(1/3),
+// over the axes of non-zero extent (a flat lattice: area / count, square root). For a regular
+// grid of spacing h in every direction, h. 0 when fewer than 2 points or all coincide.
+double lattice_spacing(std::span<const Vec3> points);
+
+}  // namespace tr
