@@ -229,7 +229,46 @@ void FusedWorker::step(Job& job, int target) {
     options.repetitions = repetitions;
     options.seed = settings_.seed + static_cast<std::uint64_t>(stats.batches);
     ImagePbvrStats image_stats;
-    const Image image = render_image_pbvr(job.scene, options, &image_stats);
+    // Progressive: the quick picture at 1 / scale of the size, so that it costs about
+    // kPreviewBudget at the last one's rate (its cost is mostly the segments on the pixel rays).
+    int scale = 1;
+    if (r.mode == FusedMode::kProgressive) {
+        const double full_ms = preview_ms_per_pixel_ * r.width * r.height;
+        for (int f : {2, 3, 4, 6, 8}) {
+            if (full_ms / (scale * scale) <= kPreviewBudget.count()) break;
+            scale = f;
+        }
+    }
+    stats.preview_scale = scale;
+    Image image;
+    if (scale == 1) {
+        image = render_image_pbvr(job.scene, options, &image_stats);
+    } else {
+        const int w = std::max(1, (r.width + scale - 1) / scale);
+        const int h = std::max(1, (r.height + scale - 1) / scale);
+        const CameraFrame frame(r.camera, w, h);
+        OpaqueLayer opaque;
+        VolumeScene scene = job.scene;
+        scene.camera = &frame;
+        if (!opaque_.empty()) {
+            opaque = render_opaque(opaque_, frame, r.background);
+            scene.opaque_color = &opaque.color;
+            scene.opaque_depth = &opaque.depth;
+        }
+        const Image small = render_image_pbvr(scene, options, &image_stats);
+        image = Image(r.width, r.height);  // nearest: each small pixel covers scale x scale
+        for (int y = 0; y < r.height; ++y) {
+            for (int x = 0; x < r.width; ++x) {
+                image.pixels[static_cast<std::size_t>(y) * r.width + x] =
+                    small.pixels[static_cast<std::size_t>(std::min(y * h / r.height, h - 1)) * w +
+                                 std::min(x * w / r.width, w - 1)];
+            }
+        }
+    }
+    if (r.mode == FusedMode::kProgressive) {
+        preview_ms_per_pixel_ =
+            ms_since(start) * scale * scale / (static_cast<double>(r.width) * r.height);
+    }
     stats.particles += image_stats.particles;
     stats.fragments = image_stats.fragments;
     for (std::size_t p = 0; p < image.pixels.size(); ++p) {

@@ -33,8 +33,9 @@
 namespace tr::viewer {
 
 enum class FusedMode {
-    kProgressive,  // one batch of pbvr-image (a quick picture while the camera moves), then,
-                   // when no newer view has been asked for within kStillDelay, the exact picture
+    kProgressive,  // one batch of pbvr-image (a quick picture while the camera moves, at a
+                   // fraction of the size that keeps it near kPreviewBudget), then, when no newer
+                   // view has been asked for within kStillDelay, the exact picture
     kPbvrImage,    // pbvr-image batches accumulated up to the target's repetitions
     kExact,        // the exact fused picture alone
 };
@@ -71,7 +72,8 @@ struct FusedFrame {
     FusedMode mode = FusedMode::kProgressive;
     int repetitions = 0;  // pbvr-image repetitions accumulated
     int batches = 0;
-    bool exact = false;  // `image` is the exact fused picture
+    int preview_scale = 1;  // progressive: the quick picture was drawn at 1 / this of the size
+    bool exact = false;     // `image` is the exact fused picture
     double batch_ms = 0, mean_batch_ms = 0;
     double exact_ms = 0;  // the exact picture: shaders made and segments merged
     double setup_ms = 0;  // the opaque layer
@@ -85,6 +87,10 @@ class FusedWorker {
     // Progressive mode: how long the view must stay after the quick picture before the exact
     // one (which cannot be interrupted) is begun.
     static constexpr std::chrono::milliseconds kStillDelay{200};
+    // Progressive mode: what the quick picture should cost. It is drawn at 1 / scale of the
+    // size (scale 1, 2, 3, 4, 6 or 8, nearest-upsampled), the smallest scale whose cost at the
+    // last quick picture's rate per pixel stays within this.
+    static constexpr std::chrono::milliseconds kPreviewBudget{120};
 
     // The meshes and the surfaces `opaque` points to must outlive the worker. `settings`: the
     // particle-based settings (target repetitions, batch, seed, pbvr-image's options).
@@ -138,8 +144,10 @@ class FusedWorker {
     int target_;
     bool stop_ = false;
 
-    std::vector<std::unique_ptr<ShaderCache>> shaders_;  // worker thread only: per volume
-    std::thread thread_;                                 // last: started when the rest is ready
+    // Worker thread only: per volume; the last quick picture's time per full-size pixel.
+    std::vector<std::unique_ptr<ShaderCache>> shaders_;
+    double preview_ms_per_pixel_ = 0;
+    std::thread thread_;  // last: started when the rest is ready
 };
 
 }  // namespace tr::viewer

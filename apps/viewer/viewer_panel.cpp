@@ -254,7 +254,12 @@ void ViewerPanel::draw_fused_panel() {
             ImGui::Text("exact fused picture%s: %.1f ms", state, f->exact_ms);
             ImGui::Text("%zu fragments, %zu overlap intervals", f->fragments, f->overlap_intervals);
         } else {
-            ImGui::Text("pbvr-image: %d repetitions%s", f->repetitions, state);
+            if (f->preview_scale > 1) {
+                ImGui::Text("pbvr-image: %d repetitions at 1/%d of the size%s", f->repetitions,
+                            f->preview_scale, state);
+            } else {
+                ImGui::Text("pbvr-image: %d repetitions%s", f->repetitions, state);
+            }
             ImGui::Text("batch %.1f ms (mean %.1f, %d batches)", f->batch_ms, f->mean_batch_ms,
                         f->batches);
             ImGui::Text("%zu particles, seed %llu + batch", f->particles,
