@@ -166,7 +166,7 @@ int run(const Args& args) {
                      "tetrahedra cannot order the cells of intersecting meshes\n",
                      vs.fused.size(), fused_mode_name(vs.fused_mode).data());
     }
-    if (!vs.sort.note.empty())
+    if (!vs.sort.note.empty() && vs.fused.empty())
         std::fprintf(stderr, "tetrender-view: note: %s\n", vs.sort.note.c_str());
     if (vs.scene.flow_volume && vs.scene.flow_volume->context) {
         std::fprintf(stderr, "tetrender-view: note: the flow volume's context veil is not drawn\n");
@@ -197,9 +197,11 @@ int run(const Args& args) {
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_VISIBLE, headless ? GLFW_FALSE : GLFW_TRUE);
-    GLFWwindow* window = glfwCreateWindow(
-        vs.scene.width, vs.scene.height,
-        ("tetrender-view: " + vs.volume().mesh.filename().string()).c_str(), nullptr, nullptr);
+    std::string title = "tetrender-view: " + vs.volume().mesh.filename().string();
+    for (std::size_t v = 1; v < vs.scene.volumes.size(); ++v)
+        title += " + " + vs.scene.volumes[v].mesh.filename().string();
+    GLFWwindow* window =
+        glfwCreateWindow(vs.scene.width, vs.scene.height, title.c_str(), nullptr, nullptr);
     if (!window) {
         const std::string why = glfw_error_text;
         return fail("no OpenGL 3.3 core context (GLFW: " + why + "); the display offers " +
