@@ -153,7 +153,7 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--method", args->method,
                     "Rendering method, overriding the scene's: projected-tetrahedra (default; "
                     "several volumes by the exact segment merge), pbvr-image, pbvr-object "
-                    "(particles: --repetitions, --seed); splat is not implemented yet");
+                    "(particles: --repetitions, --seed), splat (the mesh's points, a kernel each)");
     cmd->add_option("--repetitions", args->repetitions,
                     "Stochastic methods: ensemble size (>= 1), overriding the scene's")
         ->check(CLI::Range(1, 1 << 20));

@@ -6,6 +6,7 @@
 #include <core/result.h>
 #include <project/scene.h>
 
+#include <initializer_list>
 #include <pipeline/pipeline.h>
 #include <string>
 #include <string_view>
@@ -39,5 +40,13 @@ std::vector<std::string> method_names();
 
 // An error for a method option at `$.method.<key>` of the scene (its file in `where`).
 Error method_option_error(const Scene& scene, const std::string& key, const std::string& message);
+
+// The method's own option `key`, if the scene gives it.
+const MethodOption* option(const Scene& scene, const std::string& key);
+
+// An error unless every option of the scene's method is among `keys` (or name, repetitions,
+// seed), listing those `name` takes.
+Status only_keys(const Scene& scene, std::string_view name,
+                 std::initializer_list<std::string_view> keys);
 
 }  // namespace tr

@@ -4,31 +4,10 @@
 #include <pipeline/method.h>
 #include <pipeline/pbvr_methods.h>
 #include <pipeline/projected_tetrahedra.h>
+#include <pipeline/splat_method.h>
 
 namespace tr {
 namespace {
-
-// A method the spec names that this build does not have yet: every scene asking for it gets an
-// error saying so (never a picture made some other way).
-class NotImplementedMethod final : public RenderMethod {
-  public:
-    NotImplementedMethod(std::string name, std::string issue)
-        : name_(std::move(name)), issue_(std::move(issue)) {}
-    std::string_view name() const override { return name_; }
-    Status check(const Scene& scene, const RenderOptions&) const override {
-        return make_error(ErrorCode::kUnsupported,
-                          "$.method.name: '" + name_ + "' is not implemented yet (" + issue_ + ")",
-                          scene.source);
-    }
-    Result<RenderResult> render(Pipeline&, const Scene& scene,
-                                const RenderOptions& options) const override {
-        return check(scene, options).error();
-    }
-
-  private:
-    std::string name_;
-    std::string issue_;
-};
 
 const std::vector<std::unique_ptr<RenderMethod>>& methods() {
     static const std::vector<std::unique_ptr<RenderMethod>> all = [] {
@@ -36,7 +15,7 @@ const std::vector<std::unique_ptr<RenderMethod>>& methods() {
         m.push_back(make_projected_tetrahedra_method());
         m.push_back(make_pbvr_object_method());
         m.push_back(make_pbvr_image_method());
-        m.push_back(std::make_unique<NotImplementedMethod>("splat", "issue 14"));
+        m.push_back(make_splat_method());
         return m;
     }();
     return all;
@@ -60,6 +39,30 @@ std::vector<std::string> method_names() {
 Error method_option_error(const Scene& scene, const std::string& key, const std::string& message) {
     return make_error(ErrorCode::kInvalidArgument, "$.method." + key + ": " + message,
                       scene.source);
+}
+
+const MethodOption* option(const Scene& scene, const std::string& key) {
+    if (!scene.method) return nullptr;
+    auto it = scene.method->options.find(key);
+    return it == scene.method->options.end() ? nullptr : &it->second;
+}
+
+Status only_keys(const Scene& scene, std::string_view name,
+                 std::initializer_list<std::string_view> keys) {
+    if (!scene.method) return {};
+    for (const auto& [key, value] : scene.method->options) {
+        bool known = false;
+        std::string list = "name, repetitions, seed";
+        for (std::string_view k : keys) {
+            known = known || k == key;
+            list += ", " + std::string(k);
+        }
+        if (!known) {
+            return method_option_error(
+                scene, key, "unknown key for " + std::string(name) + " (it takes " + list + ")");
+        }
+    }
+    return {};
 }
 
 }  // namespace tr

@@ -53,43 +53,6 @@ std::uint64_t seed_of(const Scene& scene) {
     return scene.method && scene.method->seed ? static_cast<std::uint64_t>(*scene.method->seed) : 1;
 }
 
-// The method's own option `key`, if the scene gives it.
-const MethodOption* option(const Scene& scene, const std::string& key) {
-    if (!scene.method) return nullptr;
-    auto it = scene.method->options.find(key);
-    return it == scene.method->options.end() ? nullptr : &it->second;
-}
-
-// Checks that the scene's method options are among `keys`.
-Status only_keys(const Scene& scene, std::string_view name,
-                 std::initializer_list<std::string_view> keys) {
-    if (!scene.method) return {};
-    for (const auto& [key, value] : scene.method->options) {
-        bool known = false;
-        std::string list = "name, repetitions, seed";
-        for (std::string_view k : keys) {
-            known = known || k == key;
-            list += ", " + std::string(k);
-        }
-        if (!known) {
-            return method_option_error(
-                scene, key, "unknown key for " + std::string(name) + " (it takes " + list + ")");
-        }
-    }
-    return {};
-}
-
-// The opaque geometry of the scene, drawn, and stats about it.
-Result<OpaqueLayer> opaque_layer(Pipeline& pipeline, const Scene& scene, const CameraFrame& frame,
-                                 NamedStats& stats) {
-    TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
-    const auto start = Clock::now();
-    OpaqueLayer layer;
-    if (!opaque.empty()) layer = render_opaque(opaque.layers(), frame, scene.background);
-    stats.set("opaque_ms", ms_since(start));
-    return layer;
-}
-
 class PbvrObject final : public RenderMethod {
   public:
     std::string_view name() const override { return "pbvr-object"; }

@@ -1,3 +1,6 @@
+#include <project/opaque_geometry.h>
+
+#include <chrono>
 #include <pipeline/scene_volumes.h>
 #include <string>
 
@@ -36,6 +39,16 @@ Result<std::unique_ptr<SceneVolumes>> load_scene_volumes(Pipeline& pipeline, con
     stats.set("cells", cells);
     stats.set("volumes", scene.volumes.size());
     return loaded;
+}
+
+Result<OpaqueLayer> opaque_layer(Pipeline& pipeline, const Scene& scene, const CameraFrame& frame,
+                                 NamedStats& stats) {
+    TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
+    const auto start = std::chrono::steady_clock::now();
+    OpaqueLayer layer;
+    if (!opaque.empty()) layer = render_opaque(opaque.layers(), frame, scene.background);
+    stats.set("opaque_ms", ms_since(start));
+    return layer;
 }
 
 }  // namespace tr

@@ -1,9 +1,10 @@
 #pragma once
 // A scene's volumes loaded through a Pipeline's cache, each with its scalar, as the renderers of
-// several volumes take them (project/volume_scene.h): one load path for the segment merge, the
-// particle renderers and the reference ray caster.
+// several volumes take them (project/volume_scene.h), and its opaque surfaces drawn: one path
+// for the segment merge, the particle renderers, splatting and the reference ray caster.
 
 #include <core/result.h>
+#include <project/opaque_geometry.h>
 #include <project/volume_scene.h>
 
 #include <memory>
@@ -27,5 +28,10 @@ struct SceneVolumes {
 // cells (real tets, summed) and volumes.
 Result<std::unique_ptr<SceneVolumes>> load_scene_volumes(Pipeline& pipeline, const Scene& scene,
                                                          NamedStats& stats);
+
+// The scene's opaque surfaces drawn for `frame` over the background (empty when it has none);
+// sets `stats`' opaque_ms.
+Result<OpaqueLayer> opaque_layer(Pipeline& pipeline, const Scene& scene, const CameraFrame& frame,
+                                 NamedStats& stats);
 
 }  // namespace tr

@@ -104,11 +104,23 @@ TEST(CliPipeline, MethodOptionsOverrideTheScene) {
     const std::string dir = make_temp_dir();
     const std::string scene = write_json(dir + "/s.json", block_scene(dir));
     const std::string out = dir + "/o.png";
-    // Methods the spec names that are not built yet: one line, exit 1, no picture.
-    for (const char* name : {"splat"}) {
+    // A method's key it does not take: one line, exit 1, no picture.
+    auto wrong_key = run_cli("render " +
+                             write_json(dir + "/k.json",
+                                        [&] {
+                                            auto j = block_scene(dir);
+                                            j["method"] = {{"name", "splat"}, {"depth", "entry"}};
+                                            return j;
+                                        }()) +
+                             " -o " + out);
+    expect_one_line_error(wrong_key, 1, "unknown key for splat");
+    EXPECT_FALSE(std::filesystem::exists(out));
+    // Every method the spec names draws the scene.
+    for (const char* name : {"pbvr-image", "pbvr-object", "splat"}) {
         auto run = run_cli("render " + scene + " --method " + name + " -o " + out);
-        expect_one_line_error(run, 1, "not implemented yet");
-        EXPECT_FALSE(std::filesystem::exists(out));
+        EXPECT_EQ(run.exit_code, 0) << name << ": " << run.err;
+        EXPECT_TRUE(std::filesystem::exists(out)) << name;
+        std::filesystem::remove(out);
     }
     auto unknown = run_cli("render " + scene + " --method raytrace -o " + out);
     expect_one_line_error(unknown, 1, "unknown method 'raytrace' (projected-tetrahedra");

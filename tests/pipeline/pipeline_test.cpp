@@ -7,6 +7,7 @@
 #include <project/opaque_geometry.h>
 #include <sort/order_verifier.h>
 #include <tests/mesh/mixed_grid.h>
+#include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/support/image_check.h>
 
 #include <gtest/gtest.h>
@@ -93,18 +94,55 @@ TEST(Methods, UnknownNameIsAnErrorListingTheMethods) {
         << line;
 }
 
-TEST(Methods, MethodsNotBuiltYetSaySoAndDrawNothing) {
-    for (const char* name : {"splat"}) {
-        Scene scene = scene_of(grid(2));
-        scene.method = method(name);
-        Pipeline pipeline;
-        auto result = pipeline.render(scene);
-        ASSERT_FALSE(result.ok()) << name;
-        EXPECT_EQ(result.error().code, ErrorCode::kUnsupported);
-        EXPECT_NE(result.error().message.find("not implemented yet"), std::string::npos)
-            << result.error().message;
-        EXPECT_NE(result.error().message.find(name), std::string::npos);
+// Splatting through the pipeline: its keys checked before loading, what it does not draw
+// refused, and the mesh's points splatted near the projected-tetrahedra picture of the same
+// field (the kernel's reconstruction is not the tets' linear one: measured below).
+TEST(Methods, SplatDrawsThePointsAndRefusesWhatItCannot) {
+    // A lattice: the cube [0, 6]^3 in cells of 0.375, split into tets without new points.
+    TetMesh lattice = testing::uniform_box(16, 6.0);
+    std::vector<double> wave;
+    for (const Vec3& p : lattice.points()) {
+        wave.push_back(0.5 + 0.45 * std::sin(1.3 * p.x) * std::cos(0.9 * p.y + 0.4 * p.z));
     }
+    ASSERT_TRUE(lattice.add_point_field(make_double_field("wave", 1, wave)).ok());
+    Pipeline pipeline;
+    Scene scene = scene_of(std::make_shared<const TetMesh>(std::move(lattice)), 64);
+    const auto pt = pipeline.render(scene).value();
+    scene.method = method("splat");
+    auto splat = pipeline.render(scene);
+    ASSERT_TRUE(splat.ok()) << splat.error().to_string();
+    EXPECT_EQ(std::get<std::string>(*splat->stats.find("kernel")), "crawfis-max");
+    EXPECT_NEAR(splat->stats.number("spacing"), 0.375, 1e-12);  // the lattice's
+    const ImageComparison c = compare_images(splat->image, pt.image, Vec3f(scene.background));
+    std::printf("[ splat vs projected tetrahedra ] %.2f dB, largest %.4f\n", c.psnr_foreground,
+                c.max_difference);
+    // Measured 25.2 dB, largest 0.30: at 64 x 64 the kernel's blur of the lattice's edges (1.5
+    // cells past them) and of its 16-cell waves is what differs. Bounds 1.5 dB and a quarter.
+    EXPECT_GT(c.psnr_foreground, 23.7);
+    EXPECT_LT(c.max_difference, 0.38);
+    scene.method->options["kernel"] = std::string("gaussian");
+    scene.method->options["spacing"] = 1.5;
+    auto gaussian = pipeline.render(scene);
+    ASSERT_TRUE(gaussian.ok()) << gaussian.error().to_string();
+    EXPECT_EQ(gaussian->stats.number("spacing"), 1.5);
+    // Bad keys, before anything is loaded.
+    auto error_of = [&](Scene bad) {
+        auto r = Pipeline().render(bad);
+        return r.ok() ? std::string() : r.error().to_string();
+    };
+    Scene bad = scene;
+    bad.method->options["kernel"] = std::string("box");
+    EXPECT_NE(error_of(bad).find("$.method.kernel: expected"), std::string::npos);
+    bad = scene;
+    bad.method->options["spacing"] = -1.0;
+    EXPECT_NE(error_of(bad).find("$.method.spacing: expected a number > 0"), std::string::npos);
+    bad = scene;
+    bad.method->options["depth"] = std::string("entry");
+    EXPECT_NE(error_of(bad).find("unknown key for splat"), std::string::npos);
+    bad = scene;
+    bad.volumes.push_back(bad.volumes[0]);
+    bad.volumes_key = true;
+    EXPECT_NE(error_of(bad).find("splat: draws one volume"), std::string::npos);
 }
 
 TEST(Methods, ProjectedTetrahedraRejectKeysOfOtherMethodsAndNoteRepetitions) {
