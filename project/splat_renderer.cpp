@@ -24,18 +24,30 @@ struct Splat {
 
 double lattice_spacing(std::span<const Vec3> points) {
     if (points.size() < 2) return 0.0;
-    Vec3 lo = points[0], hi = points[0];
-    for (const Vec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    const Vec3 extent = hi - lo;
-    double measure = 1.0;
+    // An axis-aligned lattice: as many points as the product of the distinct coordinates per
+    // axis; its spacings, exactly.
+    double count[3], extent[3];
+    for (int k = 0; k < 3; ++k) {
+        std::vector<double> c(points.size());
+        for (std::size_t i = 0; i < points.size(); ++i) c[i] = points[i][k];
+        std::sort(c.begin(), c.end());
+        c.erase(std::unique(c.begin(), c.end()), c.end());
+        count[k] = static_cast<double>(c.size());
+        extent[k] = c.back() - c.front();
+    }
+    double measure = 1.0, cells = 1.0;
     int dims = 0;
     for (int k = 0; k < 3; ++k) {
-        if (extent[k] > 0) measure *= extent[k], ++dims;
+        if (extent[k] > 0) measure *= extent[k], cells *= count[k] - 1, ++dims;
     }
     if (dims == 0) return 0.0;
-    // A lattice of n points per axis spans (n - 1) h: count the cells, not the points.
-    const double per_axis = std::pow(static_cast<double>(points.size()), 1.0 / dims);
-    return std::pow(measure, 1.0 / dims) / std::max(per_axis - 1.0, 1.0);
+    if (count[0] * count[1] * count[2] != static_cast<double>(points.size())) {
+        // Not a full lattice: that of the same number of points filling the bounds (a lattice of
+        // n points per axis spans n - 1 spacings).
+        cells = std::pow(
+            std::max(std::pow(static_cast<double>(points.size()), 1.0 / dims) - 1.0, 1.0), dims);
+    }
+    return std::pow(measure / cells, 1.0 / dims);
 }
 
 Image render_splats(const SplatInputs& in, SplatStats* stats) {

@@ -51,9 +51,10 @@ struct SplatStats {
 // for the order plus the splats' footprints in pixels; memory O(points + pixels).
 Image render_splats(const SplatInputs& in, SplatStats* stats = nullptr);
 
-// The spacing of `points` if they were a lattice filling their bounds: (volume / count)^(1/3),
-// over the axes of non-zero extent (a flat lattice: area / count, square root). For a regular
-// grid of spacing h in every direction, h. 0 when fewer than 2 points or all coincide.
+// The lattice spacing of `points`: for an axis-aligned lattice (as many points as the product of
+// the distinct coordinates per axis) the geometric mean of its spacings per axis, exact when they
+// are equal; otherwise that of a lattice of as many points filling their bounds. Over the axes
+// of non-zero extent; 0 when fewer than 2 points or all coincide. Cost: O(n log n).
 double lattice_spacing(std::span<const Vec3> points);
 
 }  // namespace tr
