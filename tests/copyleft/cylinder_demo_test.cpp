@@ -4,10 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <numbers>
+#include <sys/wait.h>
 
 namespace tr {
 namespace {
@@ -155,6 +158,31 @@ TEST(CylinderDemo, BadOptionsAreErrors) {
     EXPECT_EQ(make_cylinder_demo({.cylinder_radius = 1.9}).error().code,
               ErrorCode::kInvalidArgument);
     EXPECT_EQ(make_cylinder_demo({.cylinder_sides = 5}).error().code, ErrorCode::kInvalidArgument);
+}
+
+// A TetGen run past its time limit is stopped and says so, and leaves no process behind (the
+// limit from TETRENDER_TETGEN_TIME_LIMIT; the 200k-tet demo takes TetGen about 5 s here).
+TEST(CylinderDemo, TetgenPastItsTimeLimitIsStopped) {
+    ::setenv("TETRENDER_TETGEN_TIME_LIMIT", "0.05", 1);
+    CylinderDemoOptions options;
+    options.target_tets = 200000;
+    const auto start = std::chrono::steady_clock::now();
+    auto demo = make_cylinder_demo(options);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ::unsetenv("TETRENDER_TETGEN_TIME_LIMIT");
+    ASSERT_FALSE(demo.ok());
+    EXPECT_NE(demo.error().message.find("TetGen ran past its time limit of 0.05 s"),
+              std::string::npos)
+        << demo.error().to_string();
+    EXPECT_LT(seconds, 2.0);
+    // The child was killed and reaped: this process has no child left.
+    errno = 0;
+    EXPECT_EQ(::waitpid(-1, nullptr, WNOHANG), -1);
+    EXPECT_EQ(errno, ECHILD);
+    // Without the limit the same call succeeds.
+    options.target_tets = 2000;
+    EXPECT_TRUE(make_cylinder_demo(options).ok());
 }
 
 }  // namespace

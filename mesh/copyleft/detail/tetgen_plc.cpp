@@ -5,19 +5,23 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fcntl.h>
 #include <limits>
 #include <mutex>
 #include <new>
+#include <poll.h>
 #include <pthread.h>
 #include <string>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
@@ -304,13 +308,25 @@ void* tetgen_thread(void*) {
     ::_exit(1);
 }
 
-bool read_all(int fd, std::vector<char>& bytes) {
+enum class ReadOutcome { kDone, kFailed, kTimedOut };
+
+// Reads `fd` to its end, or until `deadline`.
+ReadOutcome read_all(int fd, std::vector<char>& bytes,
+                     std::chrono::steady_clock::time_point deadline) {
     char buffer[1 << 16];
     for (;;) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0) return ReadOutcome::kTimedOut;
+        pollfd p{fd, POLLIN, 0};
+        const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+        if (ready < 0 && errno == EINTR) continue;
+        if (ready < 0) return ReadOutcome::kFailed;
+        if (ready == 0) continue;  // the deadline is checked above
         const ssize_t n = ::read(fd, buffer, sizeof(buffer));
         if (n < 0 && errno == EINTR) continue;
-        if (n < 0) return false;
-        if (n == 0) return true;
+        if (n < 0) return ReadOutcome::kFailed;
+        if (n == 0) return ReadOutcome::kDone;
         bytes.insert(bytes.end(), buffer, buffer + n);
     }
 }
@@ -349,7 +365,19 @@ std::string errno_text(const char* what) {
 
 }  // namespace
 
-Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switches) {
+double tetgen_time_limit(const TetgenPlc& plc) {
+    if (const char* text = std::getenv("TETRENDER_TETGEN_TIME_LIMIT")) {
+        char* end = nullptr;
+        const double seconds = std::strtod(text, &end);
+        if (end != text && *end == '\0' && seconds > 0 && std::isfinite(seconds)) return seconds;
+    }
+    const double size = static_cast<double>(plc.points.size() + plc.triangles.size() +
+                                            plc.quads.size() + plc.facets.size());
+    return std::max(kTetgenMinTimeLimit, kTetgenSecondsPerItem * size);
+}
+
+Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switches,
+                                double time_limit) {
     const std::size_t max_int = static_cast<std::size_t>(std::numeric_limits<int>::max() / 4);
     if (plc.points.size() >= max_int ||
         plc.triangles.size() + plc.quads.size() + plc.facets.size() >= max_int) {
@@ -362,6 +390,7 @@ Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switche
     const std::lock_guard<std::mutex> lock(one_at_a_time);
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) return make_error(ErrorCode::kIo, errno_text("pipe"));
+    const pid_t parent = ::getpid();
     const pid_t pid = ::fork();
     if (pid < 0) {
         ::close(fds[0]);
@@ -369,22 +398,38 @@ Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switche
         return make_error(ErrorCode::kIo, errno_text("fork for TetGen"));
     }
     if (pid == 0) {
+        // The child dies with its parent (killed, crashed): TetGen must never run on alone.
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent) ::_exit(1);  // the parent died before prctl
         ::close(fds[0]);
         child_main(fds[1], plc, switches);
     }
     ::close(fds[1]);
+    const auto deadline =
+        std::chrono::steady_clock::now() +
+        std::chrono::milliseconds(static_cast<long long>(std::min(time_limit, 1e9) * 1000.0));
     std::vector<char> bytes;
     Result<TetgenResult> result = make_error(ErrorCode::kInternal, "TetGen did not run");
-    bool read_ok = false;
+    ReadOutcome read = ReadOutcome::kFailed;
     try {
-        read_ok = read_all(fds[0], bytes);
+        read = read_all(fds[0], bytes, deadline);
     } catch (const std::bad_alloc&) {
         result = make_error(ErrorCode::kInternal, "out of memory reading TetGen's mesh");
     }
     ::close(fds[0]);
+    if (read == ReadOutcome::kTimedOut) ::kill(pid, SIGKILL);
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
+    if (read == ReadOutcome::kTimedOut) {
+        char seconds[32];
+        std::snprintf(seconds, sizeof(seconds), "%g", time_limit);
+        return make_error(ErrorCode::kUnsupported,
+                          std::string("TetGen ran past its time limit of ") + seconds +
+                              " s and was stopped (set TETRENDER_TETGEN_TIME_LIMIT, in seconds, "
+                              "for a larger job)");
+    }
+    const bool read_ok = read == ReadOutcome::kDone;
     if (WIFSIGNALED(status)) {
         return make_error(ErrorCode::kInternal, "TetGen crashed (signal " +
                                                     std::to_string(WTERMSIG(status)) + ": " +

@@ -44,8 +44,24 @@ struct TetgenResult {
 // allocating at the moment of the fork.
 // Cost: TetGen's, plus a fork (page tables, ~1 ms per GB of this process) and copying the mesh
 // through the pipe (~0.1 s per 10M tets).
-Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switches);
+//
+// Bounded: the child dies with this process (PR_SET_PDEATHSIG), and is killed when it runs past
+// `time_limit` seconds, which is then an error saying so (kUnsupported).
+Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switches,
+                                double time_limit);
 
+// The default time limit of a TetGen call: the environment's TETRENDER_TETGEN_TIME_LIMIT
+// (seconds, > 0) when set, else max(kTetgenMinTimeLimit, kTetgenSecondsPerItem x the input's
+// points and facets) — far beyond what TetGen takes on any mesh that fits in memory here
+// (about 20 s for the 1M-tet demo), so only a runaway job meets it.
+inline constexpr double kTetgenMinTimeLimit = 600.0;
+inline constexpr double kTetgenSecondsPerItem = 1e-3;
+double tetgen_time_limit(const TetgenPlc& plc);
+
+// run_tetgen with the default time limit.
+inline Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switches) {
+    return run_tetgen(plc, switches, tetgen_time_limit(plc));
+}
 // A positive number as a plain decimal with 12 significant digits ("0.000125"): TetGen's
 // switch parser reads digits and '.', so no exponent.
 std::string tetgen_number(double value);
