@@ -15,12 +15,25 @@ std::optional<SplatKernel> parse_kernel(std::string_view name) {
     return std::nullopt;
 }
 
+std::optional<SplatCompositing> parse_compositing(std::string_view name) {
+    if (name == "per-splat") return SplatCompositing::kPerSplat;
+    if (name == "sheet-buffer") return SplatCompositing::kSheetBuffer;
+    return std::nullopt;
+}
+
 class Splat final : public RenderMethod {
   public:
     std::string_view name() const override { return "splat"; }
 
     Status check(const Scene& scene, const RenderOptions& options) const override {
-        TR_TRY_STATUS(only_keys(scene, name(), {"kernel", "spacing"}));
+        TR_TRY_STATUS(only_keys(scene, name(), {"kernel", "spacing", "compositing"}));
+        if (const MethodOption* o = option(scene, "compositing")) {
+            const auto* v = std::get_if<std::string>(o);
+            if (!v || !parse_compositing(*v)) {
+                return method_option_error(scene, "compositing",
+                                           "expected \"per-splat\" or \"sheet-buffer\"");
+            }
+        }
         if (const MethodOption* o = option(scene, "kernel")) {
             const auto* v = std::get_if<std::string>(o);
             if (!v || !parse_kernel(*v)) {
@@ -68,6 +81,10 @@ class Splat final : public RenderMethod {
         if (const MethodOption* o = option(scene, "kernel")) {
             kernel = *parse_kernel(std::get<std::string>(*o));
         }
+        SplatCompositing compositing = SplatCompositing::kPerSplat;
+        if (const MethodOption* o = option(scene, "compositing")) {
+            compositing = *parse_compositing(std::get<std::string>(*o));
+        }
         const std::vector<Vec3>& points = loaded->meshes[0]->tets.points();
         double spacing = lattice_spacing(points);
         if (const MethodOption* o = option(scene, "spacing")) {
@@ -89,6 +106,7 @@ class Splat final : public RenderMethod {
         in.footprint = &footprint;
         in.camera = &frame;
         in.background = scene.background;
+        in.compositing = compositing;
         if (!layer.depth.empty()) {
             in.opaque_color = &layer.color;
             in.opaque_depth = &layer.depth;
@@ -103,6 +121,13 @@ class Splat final : public RenderMethod {
         s.set("method", std::string(name()));
         s.set("kernel", std::string(splat_kernel_name(kernel)));
         s.set("spacing", spacing);
+        s.set("compositing",
+              std::string(compositing == SplatCompositing::kSheetBuffer ? "sheet-buffer"
+                                                                        : "per-splat"));
+        if (compositing == SplatCompositing::kSheetBuffer) {
+            s.set("sheets", stats.sheets);
+            s.set("sheet_axis", stats.sheet_axis);
+        }
         s.set("threads", thread_count());
         s.set("width", scene.width);
         s.set("height", scene.height);

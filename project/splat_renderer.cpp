@@ -6,6 +6,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <iterator>
+#include <limits>
 #include <numeric>
 
 namespace tr {
@@ -102,8 +104,38 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
     }
     std::vector<std::uint32_t> order(splats.size());
     std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::uint32_t a, std::uint32_t b) { return depth[a] > depth[b]; });
+    const bool sheets = in.compositing == SplatCompositing::kSheetBuffer;
+    std::vector<std::int64_t> sheet;  // sheet buffer: each splat's sheet
+    int axis = -1;
+    if (sheets && !splats.empty()) {
+        // The axis most parallel to the view, and the sheets of thickness `spacing` across it.
+        Vec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+        for (const Splat& s : splats) lo = glm::min(lo, s.center), hi = glm::max(hi, s.center);
+        const Vec3 view = orthographic ? camera.forward() : 0.5 * (lo + hi) - camera.eye();
+        axis = 0;
+        for (int k = 1; k < 3; ++k) {
+            if (std::abs(view[k]) > std::abs(view[axis])) axis = k;
+        }
+        sheet.resize(splats.size());
+        for (std::size_t i = 0; i < splats.size(); ++i) {
+            sheet[i] = std::llround((splats[i].center[axis] - lo[axis]) / in.spacing);
+        }
+        // Back to front: orthographic, further along the view; perspective, further from the eye
+        // across the sheets (ties, sheets either side of the eye, by index).
+        const double sign = view[axis] < 0 ? -1.0 : 1.0;
+        auto key = [&](std::int64_t index) {
+            const double plane = lo[axis] + static_cast<double>(index) * in.spacing;
+            return orthographic ? sign * plane : std::abs(plane - camera.eye()[axis]);
+        };
+        std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+            if (sheet[a] == sheet[b]) return depth[a] > depth[b];
+            const double ka = key(sheet[a]), kb = key(sheet[b]);
+            return ka != kb ? ka > kb : sheet[a] > sheet[b];
+        });
+    } else {
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::uint32_t a, std::uint32_t b) { return depth[a] > depth[b]; });
+    }
     // Binned into tiles in that order.
     const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
     std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(tiles_x) * tiles_y);
@@ -130,8 +162,33 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
                 rays[(y - y0) * kTile + (x - x0)] = camera.pixel_ray(x, y);
         }
         std::size_t count = 0;
+        // The sheet buffer: the current sheet's summed optical depth and depth-weighted colour.
+        double sheet_tau[kTile * kTile] = {};
+        Vec3 sheet_color[kTile * kTile];
+        std::int64_t current = 0;
+        bool open = false;
+        auto flush = [&] {
+            for (int y = y0; y <= y1; ++y) {
+                for (int x = x0; x <= x1; ++x) {
+                    const int local = (y - y0) * kTile + (x - x0);
+                    const double tau = sheet_tau[local];
+                    if (!(tau > 0)) continue;
+                    const double alpha = -std::expm1(-tau);
+                    Vec3f& dst = image.pixels[static_cast<std::size_t>(y) * w + x];
+                    dst = Vec3f(sheet_color[local] * (alpha / tau)) +
+                          static_cast<float>(1.0 - alpha) * dst;
+                    sheet_tau[local] = 0.0;
+                    sheet_color[local] = Vec3(0.0);
+                }
+            }
+        };
+        if (sheets) std::fill(std::begin(sheet_color), std::end(sheet_color), Vec3(0.0));
         for (std::uint32_t i : bins[tile]) {
             const Splat& s = splats[i];
+            if (sheets) {
+                if (open && sheet[i] != current) flush();
+                current = sheet[i], open = true;
+            }
             for (int y = std::max(s.y0, y0); y <= std::min(s.y1, y1); ++y) {
                 for (int x = std::max(s.x0, x0); x <= std::min(s.x1, x1); ++x) {
                     const Ray& ray = rays[(y - y0) * kTile + (x - x0)];
@@ -143,18 +200,32 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
                     if (in.opaque_depth && !(t < (*in.opaque_depth)[pixel])) continue;
                     const double tau = s.kappa * spacing *
                                        (*in.footprint)(std::sqrt(std::max(rho_sq, 0.0)) / spacing);
+                    ++count;
+                    if (sheets) {
+                        const int local = (y - y0) * kTile + (x - x0);
+                        sheet_tau[local] += tau;
+                        sheet_color[local] += tau * s.color;
+                        continue;
+                    }
                     const double alpha = -std::expm1(-tau);
                     Vec3f& dst = image.pixels[pixel];
                     dst = Vec3f(s.color * alpha) + static_cast<float>(1.0 - alpha) * dst;
-                    ++count;
                 }
             }
         }
+        if (open) flush();
         fragments += count;
     });
     if (stats) {
         stats->splats_drawn = splats.size();
         stats->fragments = fragments.load();
+        stats->sheet_axis = axis;
+        if (sheets) {
+            std::vector<std::int64_t> distinct = sheet;
+            std::sort(distinct.begin(), distinct.end());
+            stats->sheets = static_cast<std::size_t>(std::unique(distinct.begin(), distinct.end()) -
+                                                     distinct.begin());
+        }
         stats->raster_ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();

@@ -13,6 +13,19 @@
 // of the points along the view (the paper's order; the per-splat compositing the paper notes
 // makes colours jump when that order changes during a rotation).
 //
+// Compositing (SplatCompositing):
+// - kPerSplat (the default, the paper's): each splat composited whole, back to front.
+// - kSheetBuffer (Westover's sheet buffer, which the paper describes but did not build): of the
+//   three lattice axes the one most parallel to the view direction (orthographic: the camera's
+//   forward; perspective: from the eye to the points' centre) is chosen; the points are binned
+//   into sheets of thickness `spacing` across it (the lattice planes most perpendicular to the
+//   view, exactly, for an axis-aligned lattice); within a sheet the splats' optical depths and
+//   depth-weighted colours are summed per pixel (no mutual occlusion: their order does not
+//   matter), and the sheets are composited back to front, alpha = 1 - exp(-sum tau), colour
+//   sum(c tau) / sum(tau) alpha. So the picture changes smoothly with the view except where the
+//   chosen axis changes (at 45 degrees to two axes), where it jumps; measured in
+//   tests/splat/splat_popping_test.cpp and docs/benchmarks.md.
+//
 // Opaque geometry: a splat is drawn on a pixel only where its centre lies in front of the
 // pixel's surface. Splats whose support reaches behind a perspective eye are not drawn.
 
@@ -27,6 +40,8 @@
 
 namespace tr {
 
+enum class SplatCompositing { kPerSplat, kSheetBuffer };
+
 struct SplatInputs {
     std::span<const Vec3> points;
     std::span<const float> scalar;  // one per point
@@ -35,6 +50,7 @@ struct SplatInputs {
     const SplatFootprint* footprint = nullptr;  // the kernel's table
     const CameraFrame* camera = nullptr;
     Vec3 background{0.0};
+    SplatCompositing compositing = SplatCompositing::kPerSplat;
     // Opaque geometry already drawn (project/opaque_geometry.h), or null.
     const Image* opaque_color = nullptr;
     const std::vector<double>* opaque_depth = nullptr;
@@ -43,6 +59,8 @@ struct SplatInputs {
 struct SplatStats {
     std::size_t splats_drawn = 0;  // points with a non-zero extinction in view
     std::size_t fragments = 0;     // (splat, pixel) pairs composited
+    std::size_t sheets = 0;        // sheet buffer: the sheets holding a splat in view (else 0)
+    int sheet_axis = -1;           // sheet buffer: the axis across the sheets (0, 1, 2; else -1)
     double raster_ms = 0;
 };
 

@@ -125,6 +125,15 @@ TEST(Methods, SplatDrawsThePointsAndRefusesWhatItCannot) {
     auto gaussian = pipeline.render(scene);
     ASSERT_TRUE(gaussian.ok()) << gaussian.error().to_string();
     EXPECT_EQ(gaussian->stats.number("spacing"), 1.5);
+    // Westover's sheet buffer: one sheet per lattice plane (17) across the axis nearest the
+    // view, at the lattice's own spacing.
+    scene.method->options.erase("spacing");
+    scene.method->options["compositing"] = std::string("sheet-buffer");
+    auto sheets = pipeline.render(scene);
+    ASSERT_TRUE(sheets.ok()) << sheets.error().to_string();
+    EXPECT_EQ(std::get<std::string>(*sheets->stats.find("compositing")), "sheet-buffer");
+    EXPECT_EQ(sheets->stats.number("spacing"), 0.375);
+    EXPECT_EQ(sheets->stats.number("sheets"), 17);
     // Bad keys, before anything is loaded.
     auto error_of = [&](Scene bad) {
         auto r = Pipeline().render(bad);
@@ -136,6 +145,11 @@ TEST(Methods, SplatDrawsThePointsAndRefusesWhatItCannot) {
     bad = scene;
     bad.method->options["spacing"] = -1.0;
     EXPECT_NE(error_of(bad).find("$.method.spacing: expected a number > 0"), std::string::npos);
+    bad = scene;
+    bad.method->options["compositing"] = std::string("sheets");
+    EXPECT_NE(error_of(bad).find("$.method.compositing: expected \"per-splat\" or "
+                                 "\"sheet-buffer\""),
+              std::string::npos);
     bad = scene;
     bad.method->options["depth"] = std::string("entry");
     EXPECT_NE(error_of(bad).find("unknown key for splat"), std::string::npos);

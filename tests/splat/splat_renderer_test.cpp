@@ -27,19 +27,28 @@ TEST(Splats, ConstantFieldIsTheSlab) {
     const TransferFunction tf = TransferFunction::create({{1, color}}, {{1, 0.1}}, 1.0).value();
     const double kappa = tf.extinction(1.0);
     const CameraFrame frame(camera_at({4, 4, 20}, {4, 4, 4}, true, 4.0), 64, 64);
-    for (SplatKernel kernel : {SplatKernel::kCrawfisMax, SplatKernel::kGaussian}) {
-        SCOPED_TRACE(std::string(splat_kernel_name(kernel)));
+    for (const auto& [kernel, compositing] :
+         {std::pair{SplatKernel::kCrawfisMax, SplatCompositing::kPerSplat},
+          std::pair{SplatKernel::kGaussian, SplatCompositing::kPerSplat},
+          std::pair{SplatKernel::kCrawfisMax, SplatCompositing::kSheetBuffer},
+          std::pair{SplatKernel::kGaussian, SplatCompositing::kSheetBuffer}}) {
+        const bool sheet = compositing == SplatCompositing::kSheetBuffer;
+        SCOPED_TRACE(std::string(splat_kernel_name(kernel)) + (sheet ? " sheet-buffer" : ""));
         const SplatFootprint footprint(kernel);
         SplatInputs in;
         in.points = box.points();
         in.scalar = scalar;
         in.spacing = kSpacing;
+        in.compositing = compositing;
         in.tf = &tf;
         in.footprint = &footprint;
         in.camera = &frame;
         SplatStats stats;
         const Image image = render_splats(in, &stats);
         EXPECT_EQ(stats.splats_drawn, box.num_points());
+        // The sheet buffer: 17 sheets across z, the axis of the view.
+        EXPECT_EQ(stats.sheets, sheet ? kCells + 1u : 0u);
+        EXPECT_EQ(stats.sheet_axis, sheet ? 2 : -1);
         // Interior pixels (rays at least the support from the lattice's sides).
         double worst_model = 0, sum_ratio = 0, lo = 1e9, hi = -1e9;
         int counted = 0;
@@ -68,12 +77,13 @@ TEST(Splats, ConstantFieldIsTheSlab) {
             }
         }
         std::printf(
-            "[ %s ] %d interior pixels: largest difference from the model %.2e; optical depth "
+            "[ %s %s ] %d interior pixels: largest difference from the model %.2e; optical depth "
             "over the slab's %.5f to %.5f, mean %.5f\n",
-            std::string(splat_kernel_name(kernel)).c_str(), counted, worst_model, lo, hi,
-            sum_ratio / counted);
+            std::string(splat_kernel_name(kernel)).c_str(), sheet ? "sheet-buffer" : "per-splat",
+            counted, worst_model, lo, hi, sum_ratio / counted);
         ASSERT_GT(counted, 1000);
         EXPECT_LT(worst_model, 1e-6);  // float rounding of the composite
+        // Both compositings alike: one colour, so only the summed optical depth matters.
         // The plane's footprint sum: mean 1 (the kernel's integral) with a ripple. Measured:
         // the cubic 0.99969 to 1.00020, mean 0.99996 (seen along a lattice axis its ripple is a
         // tenth of the 3D sum's); the Gaussian 0.99441 to 1.00465, mean 0.99955.
