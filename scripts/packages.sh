@@ -7,6 +7,7 @@ TETRENDER_PACKAGES=(
   nlohmann-json3-dev libcli11-dev
   libglfw3-dev libimgui-dev libepoxy-dev libgl1-mesa-dri xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-meshio
 )
 
 ensure_packages() {
