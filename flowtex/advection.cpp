@@ -1,0 +1,148 @@
+#include <core/parallel.h>
+
+#include <cmath>
+#include <flowtex/advection.h>
+
+namespace tr {
+namespace {
+
+constexpr std::size_t kGrain = 1024;
+
+}  // namespace
+
+Result<TextureAdvection> TextureAdvection::create(const Sheet& sheet, const Flow& flow,
+                                                  const AdvectionOptions& options) {
+    if (!(options.dt > 0) || !std::isfinite(options.dt)) {
+        return make_error(ErrorCode::kInvalidArgument, "advection dt must be positive");
+    }
+    if (!(options.texture_period > 0) || !std::isfinite(options.texture_period)) {
+        return make_error(ErrorCode::kInvalidArgument, "texture period must be positive");
+    }
+    if (options.reinject_frames < 0 || options.reinject_frames % 2 != 0) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "re-injection period must be 0 or an even number of frames");
+    }
+    TextureAdvection advection(sheet, flow, options);
+    const int num_layers = options.reinject_frames > 0 ? 2 : 1;
+    for (int k = 0; k < num_layers; ++k) {
+        Layer layer;
+        layer.phase = k * options.reinject_frames / 2;
+        // Half a period apart in both directions: an unrelated part of the noise.
+        layer.offset = glm::dvec2(0.5 * k, 0.5 * k);
+        advection.reset(layer);
+        advection.layers_.push_back(std::move(layer));
+    }
+    return advection;
+}
+
+glm::dvec2 TextureAdvection::texcoord(const Layer& layer, const Vec3& q) const {
+    return sheet_->plane_coordinates(q) / options_.texture_period + layer.offset;
+}
+
+void TextureAdvection::reset(Layer& layer) const {
+    const std::size_t n = sheet_->points.size();
+    layer.points = sheet_->points;
+    layer.alive.assign(n, 1);
+    layer.hints.assign(n, kNoCell);
+    layer.texcoords.resize(n);
+    for (std::size_t i = 0; i < n; ++i) layer.texcoords[i] = texcoord(layer, sheet_->points[i]);
+}
+
+float TextureAdvection::weight(const Layer& layer) const {
+    const int period = options_.reinject_frames;
+    if (period == 0) return 1.0f;
+    const int age = ((frame_ - layer.phase) % period + period) % period;
+    return static_cast<float>(1.0 - std::abs(2.0 * age / period - 1.0));
+}
+
+void TextureAdvection::advance() {
+    const double t0 = time();
+    ++frame_;
+    for (Layer& layer : layers_) {
+        if (options_.reinject_frames > 0 &&
+            ((frame_ - layer.phase) % options_.reinject_frames) == 0) {
+            reset(layer);
+        } else {
+            advance_layer(layer, t0);
+        }
+    }
+}
+
+void TextureAdvection::advance_layer(Layer& layer, double t0) {
+    const Sheet& sheet = *sheet_;
+    const Flow& flow = *flow_;
+    const double dt = options_.dt;
+    const Vec3 normal = sheet.normal;
+    const std::size_t n = sheet.points.size();
+    if (options_.method == AdvectionMethod::kForward) {
+        parallel_for(0, n, kGrain, [&](std::size_t i) {
+            if (!layer.alive[i]) return;
+            const auto next = rk4_step(flow, layer.points[i], t0, dt, normal, layer.hints[i]);
+            if (next) {
+                layer.points[i] = *next;
+            } else {
+                layer.alive[i] = 0;
+            }
+        });
+        return;
+    }
+    if (flow.steady() && options_.steady_streamlines) {
+        // Q moves one step further back along the streamline through P (which in a steady flow
+        // is the same curve every frame).
+        parallel_for(0, n, kGrain, [&](std::size_t i) {
+            const auto back = rk4_step(flow, layer.points[i], t0, -dt, normal, layer.hints[i]);
+            if (back) {
+                layer.points[i] = *back;
+                layer.texcoords[i] = texcoord(layer, *back);
+            }
+            // Otherwise the streamline ends at the domain's boundary (an inflow): Q stays, the
+            // texture there stretches until the layer is re-injected.
+        });
+        return;
+    }
+    // Transport equation, semi-Lagrangian: Q(P, t0 + dt) = Q(X, t0), X = P traced back.
+    scratch_.resize(n);
+    parallel_for(0, n, kGrain, [&](std::size_t i) {
+        const Vec3& p = sheet.points[i];
+        CellId hint = layer.hints[i];
+        const auto back = rk4_step(flow, p, t0 + dt, -dt, normal, hint);
+        Vec3 q = layer.points[i];
+        if (back) {
+            layer.hints[i] = hint;
+            if (const auto where = locate_on_sheet(sheet, sheet.plane_coordinates(*back))) {
+                q = Vec3(0.0);
+                for (int c = 0; c < 3; ++c) q += where->weights[c] * layer.points[where->points[c]];
+            } else {
+                q = *back;  // from off the sheet: fresh texture flows in
+            }
+        } else if (const auto v = flow.at(p, t0 + dt, hint)) {
+            q = p - dt * (*v - glm::dot(*v, normal) * normal);  // an Euler step back
+        }
+        scratch_[i] = q;
+    });
+    layer.points.swap(scratch_);
+    parallel_for(0, n, kGrain,
+                 [&](std::size_t i) { layer.texcoords[i] = texcoord(layer, layer.points[i]); });
+}
+
+std::span<const Vec3> TextureAdvection::positions(int k) const {
+    if (options_.method == AdvectionMethod::kForward) return layers_[k].points;
+    return sheet_->points;
+}
+
+std::vector<TexturedMeshView> TextureAdvection::views() const {
+    std::vector<TexturedMeshView> out;
+    for (int k = 0; k < num_layers(); ++k) {
+        const Layer& layer = layers_[k];
+        TexturedMeshView view;
+        view.positions = positions(k);
+        view.texcoords = layer.texcoords;
+        view.triangles = sheet_->triangles;
+        view.alive = layer.alive;
+        view.weight = weight(layer);
+        out.push_back(view);
+    }
+    return out;
+}
+
+}  // namespace tr

@@ -1,0 +1,174 @@
+#include <core/parallel.h>
+
+#include <algorithm>
+#include <cmath>
+#include <flowtex/sheet_raster.h>
+#include <limits>
+
+namespace tr {
+namespace {
+
+constexpr int kBandRows = 8;
+
+struct Projected {
+    double x = 0, y = 0, inv_w = 0;  // screen position, 1 / depth (1 for orthographic)
+    bool ok = false;
+};
+
+// Rasterises one layer's triangles into `values` (NaN = not covered).
+void raster_layer(const CameraFrame& frame, const TexturedMeshView& layer,
+                  const PeriodicTexture& texture, std::vector<float>& values) {
+    const int width = frame.width(), height = frame.height();
+    const std::size_t n = layer.positions.size();
+    std::vector<Projected> proj(n);
+    const bool ortho = frame.orthographic();
+    parallel_for(0, n, 4096, [&](std::size_t i) {
+        if (!layer.alive.empty() && !layer.alive[i]) return;
+        const Vec3 s = frame.project(layer.positions[i]);
+        if (!ortho && !(s.z > 1e-9)) return;
+        proj[i] = Projected{s.x, s.y, ortho ? 1.0 : 1.0 / s.z, true};
+    });
+    // Bin triangles by the bands of rows their bounds touch (counting sort: order kept).
+    const int num_bands = (height + kBandRows - 1) / kBandRows;
+    std::vector<std::uint32_t> band_count(static_cast<std::size_t>(num_bands) + 1, 0);
+    std::vector<std::array<int, 2>> tri_bands(layer.triangles.size(), {0, -1});
+    for (std::size_t t = 0; t < layer.triangles.size(); ++t) {
+        const auto& tri = layer.triangles[t];
+        const Projected &a = proj[tri[0]], &b = proj[tri[1]], &c = proj[tri[2]];
+        if (!a.ok || !b.ok || !c.ok) continue;
+        const double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
+        const double x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
+        if (y1 < 0 || y0 > height || x1 < 0 || x0 > width) continue;
+        const int r0 = std::max(0, static_cast<int>(std::floor(y0 - 0.5)));
+        const int r1 = std::min(height - 1, static_cast<int>(std::ceil(y1 - 0.5)));
+        if (r0 > r1) continue;
+        tri_bands[t] = {r0 / kBandRows, r1 / kBandRows};
+        for (int band = r0 / kBandRows; band <= r1 / kBandRows; ++band) ++band_count[band + 1];
+    }
+    for (int band = 0; band < num_bands; ++band) band_count[band + 1] += band_count[band];
+    std::vector<std::uint32_t> band_tris(band_count.back());
+    {
+        std::vector<std::uint32_t> fill(band_count.begin(), band_count.end() - 1);
+        for (std::size_t t = 0; t < tri_bands.size(); ++t) {
+            for (int band = tri_bands[t][0]; band <= tri_bands[t][1]; ++band) {
+                band_tris[fill[band]++] = static_cast<std::uint32_t>(t);
+            }
+        }
+    }
+    const double tex_size = texture.size();
+    parallel_for(0, static_cast<std::size_t>(num_bands), 1, [&](std::size_t band) {
+        const int row0 = static_cast<int>(band) * kBandRows;
+        const int row1 = std::min(height, row0 + kBandRows);
+        for (std::uint32_t k = band_count[band]; k < band_count[band + 1]; ++k) {
+            const auto& tri = layer.triangles[band_tris[k]];
+            const Projected &a = proj[tri[0]], &b = proj[tri[1]], &c = proj[tri[2]];
+            const double area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+            if (!(std::abs(area) > 1e-12)) continue;
+            const glm::dvec2 ta = layer.texcoords[tri[0]], tb = layer.texcoords[tri[1]],
+                             tc = layer.texcoords[tri[2]];
+            // Screen-space derivatives of the texture coordinates (affine over the triangle).
+            const double inv_area = 1.0 / area;
+            const glm::dvec2 e1 = tb - ta, e2 = tc - ta;
+            const double dx1 = b.x - a.x, dy1 = b.y - a.y, dx2 = c.x - a.x, dy2 = c.y - a.y;
+            const glm::dvec2 d_dx = (e1 * dy2 - e2 * dy1) * inv_area;
+            const glm::dvec2 d_dy = (e2 * dx1 - e1 * dx2) * inv_area;
+            const double footprint =
+                tex_size * std::sqrt(std::max(glm::dot(d_dx, d_dx), glm::dot(d_dy, d_dy)));
+            const double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
+            const double x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
+            const int j0 = std::max(row0, static_cast<int>(std::floor(y0 - 0.5)));
+            const int j1 = std::min(row1 - 1, static_cast<int>(std::ceil(y1 - 0.5)));
+            const int i0 = std::max(0, static_cast<int>(std::floor(x0 - 0.5)));
+            const int i1 = std::min(width - 1, static_cast<int>(std::ceil(x1 - 0.5)));
+            // Perspective-correct: interpolate t / w and 1 / w.
+            const glm::dvec2 qa = ta * a.inv_w, qb = tb * b.inv_w, qc = tc * c.inv_w;
+            constexpr double kEdgeSlack = -1e-9;
+            for (int j = j0; j <= j1; ++j) {
+                const double py = j + 0.5;
+                float* row = values.data() + static_cast<std::size_t>(j) * width;
+                for (int i = i0; i <= i1; ++i) {
+                    const double px = i + 0.5;
+                    // Barycentric weights of b and c (and a = 1 - wb - wc).
+                    const double wb =
+                        ((px - a.x) * (c.y - a.y) - (c.x - a.x) * (py - a.y)) * inv_area;
+                    const double wc =
+                        ((b.x - a.x) * (py - a.y) - (px - a.x) * (b.y - a.y)) * inv_area;
+                    const double wa = 1.0 - wb - wc;
+                    if (wa < kEdgeSlack || wb < kEdgeSlack || wc < kEdgeSlack) continue;
+                    const double inv_w = wa * a.inv_w + wb * b.inv_w + wc * c.inv_w;
+                    const glm::dvec2 uv = (wa * qa + wb * qb + wc * qc) / inv_w;
+                    row[i] = texture.sample(uv.x, uv.y, footprint);
+                }
+            }
+        }
+    });
+}
+
+}  // namespace
+
+std::vector<float> rasterize_sheet_values(const CameraFrame& frame,
+                                          std::span<const TexturedMeshView> layers,
+                                          const PeriodicTexture& texture) {
+    const std::size_t num_pixels = static_cast<std::size_t>(frame.width()) * frame.height();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::vector<std::vector<float>> per_layer(layers.size(), std::vector<float>(num_pixels, nan));
+    for (std::size_t k = 0; k < layers.size(); ++k) {
+        raster_layer(frame, layers[k], texture, per_layer[k]);
+    }
+    std::vector<float> out(num_pixels, nan);
+    parallel_for(0, num_pixels, 4096, [&](std::size_t p) {
+        double sum = 0, sum_sq = 0, plain = 0;
+        int covered = 0;
+        for (std::size_t k = 0; k < layers.size(); ++k) {
+            const float v = per_layer[k][p];
+            if (std::isnan(v)) continue;
+            const double w = layers[k].weight;
+            sum += w * (v - 0.5);
+            sum_sq += w * w;
+            plain += v;
+            ++covered;
+        }
+        if (covered == 0) return;
+        const double value = sum_sq > 1e-12 ? 0.5 + sum / std::sqrt(sum_sq) : plain / covered;
+        out[p] = static_cast<float>(std::clamp(value, 0.0, 1.0));
+    });
+    return out;
+}
+
+void rasterize_sheet(const CameraFrame& frame, std::span<const TexturedMeshView> layers,
+                     const PeriodicTexture& texture, const SheetRasterOptions& options,
+                     Image& image) {
+    const std::vector<float> values = rasterize_sheet_values(frame, layers, texture);
+    image.width = frame.width();
+    image.height = frame.height();
+    image.pixels.resize(values.size());
+    parallel_for(0, values.size(), 4096, [&](std::size_t p) {
+        const float v = values[p];
+        image.pixels[p] =
+            std::isnan(v) ? options.background : options.dark + v * (options.light - options.dark);
+    });
+}
+
+Camera sheet_camera(const Sheet& sheet, int width, int height) {
+    glm::dvec2 lo(1e300), hi(-1e300);
+    for (const Vec3& p : sheet.points) {
+        const glm::dvec2 st = sheet.plane_coordinates(p);
+        lo = glm::min(lo, st);
+        hi = glm::max(hi, st);
+    }
+    if (sheet.points.empty()) lo = hi = glm::dvec2(0.0);
+    const glm::dvec2 centre = 0.5 * (lo + hi);
+    const Vec3 focal = sheet.origin + centre.x * sheet.axis_u + centre.y * sheet.axis_v;
+    const double half_w = 0.5 * (hi.x - lo.x), half_h = 0.5 * (hi.y - lo.y);
+    const double aspect = static_cast<double>(width) / height;
+    Camera camera;
+    camera.parallel = true;
+    camera.parallel_scale = 1.02 * std::max({half_h, half_w / aspect, 1e-12});
+    const double distance = std::max(1.0, 4.0 * std::max(half_w, half_h));
+    camera.focal_point = focal;
+    camera.position = focal + distance * sheet.normal;
+    camera.view_up = sheet.axis_v;
+    return camera;
+}
+
+}  // namespace tr

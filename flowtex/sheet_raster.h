@@ -1,0 +1,43 @@
+#pragma once
+// A CPU rasteriser for advected sheets: textured triangles through the core camera with
+// perspective-correct texture coordinates and mip-mapped lookups, the layers blended.
+
+#include <core/camera.h>
+#include <core/image.h>
+
+#include <flowtex/advection.h>
+#include <flowtex/periodic_texture.h>
+#include <span>
+
+namespace tr {
+
+struct SheetRasterOptions {
+    Vec3f dark{0.04f, 0.07f, 0.20f};  // the colour of texture value 0
+    Vec3f light{1.0f, 0.92f, 0.70f};  // the colour of texture value 1
+    Vec3f background{0.0f};           // where no triangle is drawn
+};
+
+// Draws `layers` into `image` (resized to the frame's size; every pixel written). Each layer is
+// rasterised on its own (pixel centres inside or on a triangle's edges; where a layer's
+// triangles overlap, the later one wins); a pixel's texture value over the layers covering it
+// is 0.5 + sum w_k (v_k - 0.5) / sqrt(sum w_k^2), which keeps the noise's contrast through a
+// cross-fade (when all covering weights are 0: their plain mean). Texture lookups use the
+// triangle's screen-space derivatives of the texture coordinates (constant per triangle) for
+// the mip level. Points behind a perspective eye drop their triangles. Bit-identical for any
+// thread count (bands of rows, triangles in order within a band).
+// Cost: O(points + triangles + covered pixels x layers x 8 texel reads).
+void rasterize_sheet(const CameraFrame& frame, std::span<const TexturedMeshView> layers,
+                     const PeriodicTexture& texture, const SheetRasterOptions& options,
+                     Image& image);
+
+// The grey value (0..1, before colouring) each pixel got, NaN where nothing was drawn:
+// rasterize_sheet's blend without the colours (tests, phase correlation).
+std::vector<float> rasterize_sheet_values(const CameraFrame& frame,
+                                          std::span<const TexturedMeshView> layers,
+                                          const PeriodicTexture& texture);
+
+// An orthographic camera looking at the sheet's kept points along -normal (view up axis_v),
+// framing them with a 2% margin at the aspect width / height.
+Camera sheet_camera(const Sheet& sheet, int width, int height);
+
+}  // namespace tr
