@@ -1,4 +1,5 @@
 #include <project/colormap.h>
+#include <project/colormap_preset.h>
 
 #include <cmath>
 #include <map>
@@ -49,6 +50,7 @@ const std::map<std::string, std::vector<Vec3>>& maps() {
 std::vector<std::string> colormap_names() {
     std::vector<std::string> names;
     for (const auto& [name, points] : maps()) names.push_back(name);
+    for (const auto& name : builtin_colormap_preset_names()) names.push_back(name);
     return names;
 }
 
@@ -56,6 +58,14 @@ Result<TransferFunction> make_quick_transfer_function(const std::string& colorma
                                                       double hi, double max_opacity,
                                                       double unit_distance) {
     auto it = maps().find(colormap);
+    if (it == maps().end() && builtin_colormap_preset(colormap).ok()) {
+        if (!std::isfinite(lo) || !std::isfinite(hi)) {
+            return make_error(ErrorCode::kInvalidArgument, "the scalar range is not finite");
+        }
+        if (!(hi > lo)) hi = lo + 1.0;
+        return TransferFunction::create(preset_colors(*builtin_colormap_preset(colormap), lo, hi),
+                                        {{lo, 0.0}, {hi, max_opacity}}, unit_distance);
+    }
     if (it == maps().end()) {
         std::string names;
         for (const auto& n : colormap_names()) names += (names.empty() ? "" : ", ") + n;

@@ -9,7 +9,9 @@
 
 namespace tr {
 
-// Names accepted by make_quick_transfer_function: "viridis", "coolwarm", "inferno", "gray".
+// Names accepted by make_quick_transfer_function: "viridis", "coolwarm", "inferno", "gray", then
+// the built-in ParaView presets by their names (project/colormap_preset.h: "Cool to Warm",
+// "Viridis (matplotlib)", "Jet", ...; those also case-insensitive).
 std::vector<std::string> colormap_names();
 
 // A colour map spread over [lo, hi]; opacity rising linearly from 0 at lo to `max_opacity` at
