@@ -1,0 +1,34 @@
+#pragma once
+// Annotations on a rendered picture of a scene (overlay/): the colour bar of a volume's
+// transfer function, the bounding box of the scene's meshes and an axes triad, drawn with the
+// scene's camera. Called after Pipeline::render on its image; the legend is off in scene files
+// compared pixel for pixel unless asked for (the caller decides: `tetrender render --legend`).
+
+#include <core/image.h>
+#include <core/result.h>
+#include <project/scene.h>
+
+#include <overlay/legend.h>
+#include <pipeline/pipeline.h>
+
+namespace tr {
+
+struct AnnotationOptions {
+    bool legend = true;
+    bool bounding_box = false;
+    bool axes = false;
+    // The legend's settings. Left empty, the title is volume 0's array ("name" or "name[c]" for
+    // a component) and the range its transfer function's colour points'; the background is the
+    // scene's.
+    LegendSpec legend_spec;
+    Vec3f box_color{0.85f, 0.85f, 0.85f};
+};
+
+// Draws what `options` asks onto `image`, which must be the scene's picture (scene.width x
+// scene.height). The bounding box is that of every volume's mesh, taken from `pipeline`'s cache
+// (loaded if it is not there). Errors: an image of another size; the legend's (a picture too
+// small for it, a log scale over a range that is not positive); loading a mesh.
+Status annotate(Image& image, const Scene& scene, Pipeline& pipeline,
+                const AnnotationOptions& options);
+
+}  // namespace tr

@@ -1,0 +1,104 @@
+// Annotations on a rendered scene: the legend beside the volume (not over it), the bounding
+// box on the meshes' projected corners, nothing drawn when nothing is asked.
+#include <mesh/tetrahedralize.h>
+#include <project/colormap.h>
+#include <tests/mesh/mixed_grid.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <pipeline/annotations.h>
+#include <pipeline/quick_scene.h>
+
+namespace tr {
+namespace {
+
+Scene grid_scene() {
+    testing::MixedGridOptions o;
+    o.nx = o.ny = o.nz = 4;
+    auto mesh = tetrahedralize(testing::make_mixed_grid(o)).value();
+    std::vector<double> wave;
+    for (const Vec3& p : mesh.points()) wave.push_back(0.5 + 0.45 * std::sin(1.3 * p.x));
+    EXPECT_TRUE(mesh.add_point_field(make_double_field("wave", 1, wave)).ok());
+    Scene scene;
+    SceneVolume v;
+    v.mesh = "grid";
+    v.tets = std::make_shared<const TetMesh>(std::move(mesh));
+    v.scalar = "wave";
+    v.transfer_function =
+        make_quick_transfer_function("Cool to Warm", 0.05, 0.95, 0.6, 1.5).value();
+    scene.volumes.push_back(std::move(v));
+    scene.camera = framing_camera(scene.volumes[0].tets->bounds(), kDefaultViewDirection);
+    scene.width = 400;
+    scene.height = 200;  // wide: room beside the volume
+    scene.background = Vec3(0.05, 0.05, 0.1);
+    return scene;
+}
+
+TEST(Annotations, LegendBesideTheVolumeAndBoxOnTheCorners) {
+    const Scene scene = grid_scene();
+    Pipeline pipeline;
+    auto rendered = pipeline.render(scene);
+    ASSERT_TRUE(rendered.ok()) << rendered.error().to_string();
+    const Image plain = rendered->image;
+
+    // Nothing asked: nothing drawn.
+    Image same = plain;
+    AnnotationOptions none;
+    none.legend = false;
+    ASSERT_TRUE(annotate(same, scene, pipeline, none).ok());
+    EXPECT_EQ(same.pixels, plain.pixels);
+
+    Image annotated = plain;
+    AnnotationOptions options;
+    options.bounding_box = true;
+    options.axes = true;
+    ASSERT_TRUE(annotate(annotated, scene, pipeline, options).ok());
+
+    // The legend alone, to find its rectangle: it covers no pixel of the volume.
+    Image legend_only = plain;
+    LegendSpec spec;
+    spec.title = "wave";
+    spec.background = Vec3f(scene.background);
+    auto layout = draw_legend(legend_only, scene.volumes[0].transfer_function, spec);
+    ASSERT_TRUE(layout.ok());
+    const Vec3f bg(scene.background);
+    int volume_under_legend = 0;
+    for (int y = layout->whole.y0; y < layout->whole.y1; ++y) {
+        for (int x = layout->whole.x0; x < layout->whole.x1; ++x) {
+            const Vec3f d = glm::abs(plain.at(x, y) - bg);
+            if (std::max({d.x, d.y, d.z}) > 0.5f / 255) ++volume_under_legend;
+        }
+    }
+    EXPECT_EQ(volume_under_legend, 0);
+    // annotate drew the same legend (same place, same title: the array's name).
+    const int bx = (layout->bar.x0 + layout->bar.x1) / 2;
+    for (int y = layout->bar.y0; y < layout->bar.y1; ++y) {
+        ASSERT_EQ(annotated.at(bx, y), legend_only.at(bx, y)) << y;
+    }
+
+    // Box corners on the pixels the camera projects them to.
+    const Bounds3 b = scene.volumes[0].tets->bounds();
+    const CameraFrame frame(scene.camera, scene.width, scene.height);
+    int corners = 0;
+    for (int i = 0; i < 8; ++i) {
+        const Vec3 c(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z);
+        const Vec3 p = frame.project(c);
+        if (p.x < 0 || p.y < 0 || p.x >= scene.width || p.y >= scene.height) continue;
+        EXPECT_EQ(annotated.at(int(p.x), int(p.y)), options.box_color) << "corner " << i;
+        ++corners;
+    }
+    EXPECT_EQ(corners, 8);
+}
+
+TEST(Annotations, WrongSizeIsAnError) {
+    const Scene scene = grid_scene();
+    Pipeline pipeline;
+    Image image(10, 10);
+    const Status status = annotate(image, scene, pipeline, AnnotationOptions{});
+    ASSERT_FALSE(status.ok());
+    EXPECT_NE(status.error().message.find("10x10"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tr
