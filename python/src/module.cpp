@@ -5,6 +5,7 @@
 // the GIL is released while reading, tetrahedralizing, rendering, sorting and verifying.
 #include <core/image.h>
 #include <io/read_mesh.h>
+#include <io/write_image.h>
 #include <mesh/tetrahedralize.h>
 #include <sort/order_verifier.h>
 
@@ -358,6 +359,19 @@ PYBIND11_MODULE(_core, m) {
             },
             py::arg("volume"), py::arg("mesh"), py::arg("name"))
         .def(
+            "set_view",
+            [](SceneHandle& s, const SceneHandle& from, bool image) {
+                std::lock_guard lock(*s.mutex);
+                s.scene.camera = from.scene.camera;
+                if (image) {
+                    s.scene.width = from.scene.width;
+                    s.scene.height = from.scene.height;
+                    s.scene.background = from.scene.background;
+                }
+            },
+            py::arg("from"), py::arg("image"),
+            "Takes the camera (and the image settings) of another scene; meshes stay loaded.")
+        .def(
             "write",
             [](const SceneHandle& s, const std::string& path) {
                 unwrap(tr::write_scene(s.scene, path));
@@ -382,8 +396,16 @@ PYBIND11_MODULE(_core, m) {
                     return s.pipeline->render(scene, options);
                 }();
                 tr::RenderResult rendered = unwrap(std::move(result));
+                py::object flow = py::none();
+                if (rendered.flow_volume) {
+                    // The dye's tets, sharing the flow volume (aliasing: it stays alive).
+                    flow =
+                        py::cast(TetHandle{std::shared_ptr<const tr::TetMesh>(
+                                               rendered.flow_volume, &rendered.flow_volume->mesh),
+                                           {}});
+                }
                 return py::make_tuple(image_array(rendered.image, as_float),
-                                      stats_dict(rendered.stats), rendered.notes);
+                                      stats_dict(rendered.stats), rendered.notes, flow);
             },
             py::arg("method"), py::arg("sort"), py::arg("integrator"), py::arg("as_float"))
         .def(
@@ -467,6 +489,38 @@ PYBIND11_MODULE(_core, m) {
                                  loaded->report};
             },
             py::arg("volume"), "The volume's mesh as the pipeline loaded it (tetrahedral).");
+
+    m.def(
+        "write_image",
+        [](const py::array& array, const std::string& path) {
+            if (array.ndim() != 3 || array.shape(2) != 3) {
+                bad_argument(path + ": expected an (H, W, 3) image array");
+            }
+            tr::Image image(static_cast<int>(array.shape(1)), static_cast<int>(array.shape(0)));
+            if (array.dtype().is(py::dtype::of<std::uint8_t>())) {
+                auto bytes = py::array_t<std::uint8_t, py::array::c_style>::ensure(array);
+                for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+                    for (int c = 0; c < 3; ++c)
+                        image.pixels[i][c] = bytes.data()[3 * i + c] / 255.0f;
+                }
+            } else {
+                auto floats =
+                    py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
+                if (!floats) bad_argument(path + ": not a numeric image array");
+                std::memcpy(image.pixels.data(), floats.data(),
+                            image.pixels.size() * sizeof(tr::Vec3f));
+            }
+            py::gil_scoped_release release;
+            tr::Status written = tr::write_image(image, path);
+            py::gil_scoped_acquire acquire;
+            unwrap(written);
+        },
+        py::arg("image"), py::arg("path"), "io/write_image.h write_image (.png or .pfm)");
+
+    m.def(
+        "read_image",
+        [](const std::string& path) { return image_array(unwrap(tr::read_image(path)), true); },
+        py::arg("path"), "io/write_image.h read_image: (H, W, 3) float32");
 
     m.def(
         "read_scene",

@@ -45,3 +45,17 @@ def test_order_ids_are_checked(scene):
         tetrender.sort(scene, "bubble")
     with pytest.raises(tetrender.Error, match=r"volume 3 out of range \(the scene has 1\)"):
         tetrender.sort(scene, "exact", volume=3)
+
+
+def test_another_view_keeps_the_mesh_and_sorts_for_the_new_camera(scene):
+    first = tetrender.sort(scene, "exact").order
+    loaded = scene.mesh().points.__array_interface__["data"][0]
+    scene.set_view({"position": [0.5, 0.5, 3.0], "focal_point": [0.5, 0.5, 0.17], "view_up": [0, 1, 0]})
+    second = tetrender.sort(scene, "exact")
+    assert not np.array_equal(first, second.order)
+    assert scene.mesh().points.__array_interface__["data"][0] == loaded  # not loaded again
+    assert tetrender.verify_order(scene, second).ok
+    # The old order seen from above: the verifier finds it wrong there.
+    assert tetrender.verify_order(scene, first).violations > 0
+    with pytest.raises(tetrender.Error, match=r"<view>: error: \$\.camera: view_up is parallel to the view direction"):
+        scene.set_view({"position": [0, 0, 3.0], "focal_point": [0, 0, 0], "view_up": [0, 0, 1]})

@@ -11,6 +11,8 @@ The library's entry points with numpy arrays in and out (docs/python.md):
   ../shared/spec/scene.md); a volume's ``"mesh"`` may be an in-memory :class:`Mesh`
 - ``render(scene, ...)`` -> an ``(H, W, 3)`` uint8 (or float32) array
 - ``sort(scene, ...)`` -> a visibility order, ``verify_order(scene, order)`` -> its check
+- ``flow_volume(scene, vectors, seed_center, seed_size, ...)`` -> the dye's picture and tets
+- ``write_image(path, image)`` / ``read_image(path)``: PNG and PFM, as the CLI writes them
 
 Errors raise :class:`Error` (a ``RuntimeError``) with the library's one-line message.
 The GIL is released while reading, tetrahedralizing, rendering, sorting and verifying.
@@ -40,6 +42,9 @@ __all__ = [
     "render",
     "sort",
     "verify_order",
+    "flow_volume",
+    "write_image",
+    "read_image",
     "CELL_TYPES",
 ]
 
@@ -434,6 +439,20 @@ class Scene:
         """The volume's tetrahedral mesh as the renderer loads it (cell ids of sort orders)."""
         return Mesh._from_tets(self._handle.volume_tets(volume), self._handle.volume_mesh_path(volume))
 
+    def set_view(self, camera: Mapping[str, Any], image: Mapping[str, Any] | None = None) -> None:
+        """Changes the camera (and the image's size and background): the scene file's
+        ``camera`` and ``image`` objects, checked by the scene parser. What the scene loaded
+        and prepared is kept, so another view costs only the sort and the raster."""
+        view = {
+            "mesh": "-", "scalar": "-",
+            "transfer_function": {"color": [[0, 0, 0, 0]], "opacity": [[0, 0]], "unit_distance": 1},
+            "camera": dict(camera),
+            "image": dict(image) if image is not None else
+                     {"width": self.width, "height": self.height},
+        }
+        self._handle.set_view(_core.parse_scene(json.dumps(view), os.getcwd(), "<view>"),
+                              image is not None)
+
     def write(self, path: str | os.PathLike) -> None:
         """Writes the scene file (in-memory meshes are named, not written)."""
         self._handle.write(os.fspath(path))
@@ -465,8 +484,65 @@ def render(
     as_float = np.dtype(dtype) == np.float32
     if not as_float and np.dtype(dtype) != np.uint8:
         raise Error(f"error: dtype must be uint8 or float32, not {np.dtype(dtype).name}")
-    image, stats, notes = _scene(scene)._handle.render(method or "", sort, integrator, as_float)
+    image, stats, notes, _ = _scene(scene)._handle.render(method or "", sort, integrator, as_float)
     return (image, stats, notes) if return_stats else image
+
+
+def flow_volume(
+    scene: Any,
+    vectors: str,
+    seed_center: Any,
+    seed_size: Any,
+    dtype: Any = np.uint8,
+    base_dir: str | os.PathLike | None = None,
+    **options: Any,
+) -> tuple[np.ndarray, Mesh]:
+    """Grows a flow volume through a scene's mesh and renders it (flowvol/, docs/scene-file.md).
+
+    ``scene`` is a dict, a JSON string or a scene file's path (a volume's ``"mesh"`` may be an
+    in-memory mesh); its ``"flow_volume"`` key is set from ``vectors`` (a 3-component point
+    array), ``seed_center`` (3 numbers), ``seed_size`` (width, height of the dye polygon) and
+    ``options`` (seed_resolution, seed_normal, steps, dt, compressible, split_threshold,
+    unsteady, start_time, color, opacity, unit_distance, context: the scene file's keys).
+    Returns the ``(H, W, 3)`` picture and the dye's tetrahedra as a Mesh, with cell arrays
+    ``concentration`` and ``age`` and point array ``concentration``.
+    """
+    if isinstance(scene, Scene):
+        raise Error("error: flow_volume takes the scene as a dict, a JSON string or a path, "
+                    "not a Scene (it adds the flow_volume key)")
+    if isinstance(scene, (str, os.PathLike)) and not str(scene).lstrip().startswith("{"):
+        path = Path(scene)
+        try:
+            text = path.read_text()
+        except OSError as exc:
+            raise Error(f"{path}: error: cannot read the scene file ({exc.strerror})") from None
+        base_dir = path.parent if base_dir is None else base_dir
+        scene = text
+    if isinstance(scene, str):
+        try:
+            scene = json.loads(scene)
+        except json.JSONDecodeError as exc:
+            raise Error(f"<scene string>:{exc.lineno}:{exc.colno}: error: {exc.msg}") from None
+    scene = dict(scene)
+    spec = {"vectors": vectors,
+            "seed_center": [float(v) for v in seed_center],
+            "seed_size": [float(v) for v in seed_size]}
+    spec.update({k: (np.asarray(v).tolist() if isinstance(v, np.ndarray) else v) for k, v in options.items()})
+    scene["flow_volume"] = spec
+    as_float = np.dtype(dtype) == np.float32
+    image, _, _, tets = Scene(scene, base_dir=base_dir)._handle.render("", "auto", "preintegrated", as_float)
+    return image, Mesh._from_tets(tets, "flow volume")
+
+
+def write_image(path: str | os.PathLike, image: Any) -> None:
+    """Writes an ``(H, W, 3)`` picture as PNG (8-bit, linear: uint8 as is, floats clamped to
+    [0, 1] and rounded, as the CLI writes) or PFM (floats), by the path's extension."""
+    _core.write_image(np.asarray(image), os.fspath(path))
+
+
+def read_image(path: str | os.PathLike) -> np.ndarray:
+    """Reads a PNG or PFM picture as an ``(H, W, 3)`` float32 array in [0, 1], row 0 at the top."""
+    return _core.read_image(os.fspath(path))
 
 
 @dataclass
