@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
     auto render = add_render_command(app);
     auto flowvol = add_flowvol_command(app);
     auto compare = add_compare_command(app);
+    auto advect = add_advect_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("render")) return render();
         if (app.got_subcommand("flowvol")) return flowvol();
         if (app.got_subcommand("compare")) return compare();
+        if (app.got_subcommand("advect")) return advect();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tetrender: internal error: %s\n", e.what());
         return kExitError;

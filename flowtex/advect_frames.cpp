@@ -81,7 +81,7 @@ Result<AdvectFramesReport> advect_frames(
     advection_options.dt = dt;
     advection_options.start_time = start_time;
     advection_options.texture_period =
-        options.texture_period > 0 ? options.texture_period : extent / 4.0;
+        options.texture_period > 0 ? options.texture_period : extent / 2.0;
     // Nothing moves anywhere: no re-injection either, so the frames are still.
     advection_options.reinject_frames = report.mean_speed > 0 ? options.reinject_frames : 0;
     advection_options.method = options.method;

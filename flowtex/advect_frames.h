@@ -32,8 +32,8 @@ struct AdvectFramesOptions {
     int reinject_frames = 40;  // even; 0: off
     int width = 512, height = 512;
     int texture_size = 256;     // texels a side (power of two)
-    int texture_feature = 2;    // the noise's smoothing radius in texels
-    double texture_period = 0;  // world units per texture repeat; 0: a quarter of the longer side
+    int texture_feature = 4;    // the noise's smoothing radius in texels
+    double texture_period = 0;  // world units per texture repeat; 0: half the longer side
     SheetRasterOptions raster;
 };
 

@@ -1,0 +1,142 @@
+// tetrender advect MESH --vectors NAME --frames DIR: a noise texture advected over a slice of
+// the mesh by its vector field, one PNG per frame (flowtex/, docs/flowtex.md).
+#include <apps/cli_common.h>
+#include <apps/commands.h>
+#include <io/write_image.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <flowtex/advect_frames.h>
+#include <memory>
+#include <pipeline/flow_volume_scene.h>
+#include <pipeline/pipeline.h>
+
+namespace tr::apps {
+namespace {
+
+struct AdvectArgs {
+    std::string mesh;
+    std::string vectors;
+    std::vector<double> slice;
+    std::string frames;
+    int steps = 100;
+    double dt = 0;
+    bool unsteady = false;
+    std::string method = "backward";
+    std::string size = "512x512";
+    int resolution = 256;
+    int reinject = 40;
+    int time_step = 0;
+};
+
+int run_advect(const AdvectArgs& args) {
+    AdvectFramesOptions options;
+    if (!parse_image_size(args.size, options.width, options.height)) {
+        std::fprintf(stderr, "tetrender: --size must be WxH, not '%s'\n", args.size.c_str());
+        return kExitUsage;
+    }
+    if (args.method == "backward") {
+        options.method = AdvectionMethod::kBackward;
+    } else if (args.method == "forward") {
+        options.method = AdvectionMethod::kForward;
+    } else {
+        std::fprintf(stderr, "tetrender: --method must be backward or forward, not '%s'\n",
+                     args.method.c_str());
+        return kExitUsage;
+    }
+    if (args.reinject % 2 != 0) {
+        std::fprintf(stderr, "tetrender: --reinject must be even (or 0), not %d\n", args.reinject);
+        return kExitUsage;
+    }
+    if (!args.slice.empty()) {
+        options.slice_point = Vec3(args.slice[0], args.slice[1], args.slice[2]);
+        options.slice_normal = Vec3(args.slice[3], args.slice[4], args.slice[5]);
+    }
+    options.steps = args.steps;
+    options.dt = args.dt;
+    options.sheet_resolution = args.resolution;
+    options.reinject_frames = args.reinject;
+
+    // The frames folder must take files before any work.
+    const std::filesystem::path dir(args.frames);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir)) {
+        std::fprintf(stderr, "tetrender: %s: error: cannot create the frames folder\n",
+                     args.frames.c_str());
+        return kExitError;
+    }
+    if (const Status ok = check_output_path((dir / "frame_0000.png").string(), {".png"});
+        !ok.ok()) {
+        return report_usage(ok.error());
+    }
+
+    PipelineOptions pipeline_options;
+    pipeline_options.progress = terminal_progress();
+    Pipeline pipeline(pipeline_options);
+    SceneVolume volume;
+    volume.mesh = args.mesh;
+    volume.time_step = args.time_step;
+    auto domain = pipeline.flow_domain(volume);
+    if (!domain.ok()) return report_error(domain.error());
+    auto velocity = load_velocity(*domain, args.vectors, args.unsteady);
+    if (!velocity.ok()) return report_error(velocity.error());
+
+    const auto report =
+        advect_frames(domain->mesh(), *domain->adjacency, *velocity, options,
+                      [&](int frame, const Image& picture) -> Status {
+                          char name[32];
+                          std::snprintf(name, sizeof(name), "frame_%04d.png", frame);
+                          return write_png(picture, dir / name);
+                      });
+    if (!report.ok()) {
+        Error error = report.error();
+        if (error.where.empty()) error.where = args.mesh;
+        return report_error(error);
+    }
+    std::printf("sheet: %zu points, %zu triangles; mean in-plane speed %.4g, dt %.4g%s\n",
+                report->sheet_points, report->sheet_triangles, report->mean_speed, report->dt,
+                report->mean_speed > 0 ? "" : " (zero velocity: still frames)");
+    std::printf("wrote %d frames to %s (advection %.0f ms, raster %.0f ms)\n", report->frames,
+                args.frames.c_str(), report->advect_ms, report->raster_ms);
+    return kExitOk;
+}
+
+}  // namespace
+
+std::function<int()> add_advect_command(CLI::App& app) {
+    auto args = std::make_shared<AdvectArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "advect", "Advect a noise texture over a slice of a mesh by its vector field (frames)");
+    cmd->add_option("mesh", args->mesh, "Mesh with a 3-component point array")->required();
+    cmd->add_option("--vectors", args->vectors, "The velocity array")->required();
+    cmd->add_option("--slice", args->slice,
+                    "Slice plane px,py,pz,nx,ny,nz (default: through the centre, normal along "
+                    "the bounds' thinnest axis)")
+        ->expected(6)
+        ->delimiter(',');
+    cmd->add_option("--frames", args->frames, "Folder for frame_NNNN.png (created)")->required();
+    cmd->add_option("--steps", args->steps, "Frames after the first (default 100)")
+        ->check(CLI::Range(0, 100000));
+    cmd->add_option("--dt", args->dt,
+                    "Flow time per frame (default: steady, 1/200 of the slice per frame at the "
+                    "mean speed; unsteady, the file's time span over the steps)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_flag("--unsteady", args->unsteady,
+                  "Velocity linear in time over all the file's time steps (.pvd, Exodus)");
+    cmd->add_option("--time-step", args->time_step, "The time step to read (steady; default 0)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--method", args->method,
+                    "backward (points fixed, texture coordinates traced back; default) or "
+                    "forward (points moved along paths)");
+    cmd->add_option("--resolution", args->resolution,
+                    "Sheet squares along its longer side (default 256)")
+        ->check(CLI::Range(1, 8192));
+    cmd->add_option("--reinject", args->reinject,
+                    "Frames between re-injections of fresh texture, even (default 40; 0: off)")
+        ->check(CLI::Range(0, 100000));
+    cmd->add_option("--size", args->size, "Image size WxH (default 512x512)");
+    return [args] { return run_advect(*args); };
+}
+
+}  // namespace tr::apps

@@ -1,0 +1,125 @@
+// tetrender advect through the command line on small generated grids: frames written, still
+// frames for zero velocity, and one-line errors for bad input (issue 15).
+#include <tests/apps/cli_runner.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace tr {
+namespace {
+
+using testing::make_temp_dir;
+using testing::run_cli;
+using testing::shell_quote;
+
+// A legacy ASCII grid of 4 x 4 x 4 hexahedra over [0, 4]^3 with a point scalar `s` and point
+// vectors `v`: zero, or a rotation about the axis x = y = 2.
+std::string grid_file(const std::string& dir, bool rotating) {
+    const int n = 5;
+    std::string s = "# vtk DataFile Version 4.2\nadvect test\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+    s += "POINTS " + std::to_string(n * n * n) + " double\n";
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                s += std::to_string(i) + " " + std::to_string(j) + " " + std::to_string(k) + "\n";
+    const int cells = (n - 1) * (n - 1) * (n - 1);
+    s += "CELLS " + std::to_string(cells) + " " + std::to_string(cells * 9) + "\n";
+    auto id = [&](int i, int j, int k) { return std::to_string(i + n * (j + n * k)); };
+    for (int k = 0; k + 1 < n; ++k)
+        for (int j = 0; j + 1 < n; ++j)
+            for (int i = 0; i + 1 < n; ++i)
+                s += "8 " + id(i, j, k) + " " + id(i + 1, j, k) + " " + id(i + 1, j + 1, k) + " " +
+                     id(i, j + 1, k) + " " + id(i, j, k + 1) + " " + id(i + 1, j, k + 1) + " " +
+                     id(i + 1, j + 1, k + 1) + " " + id(i, j + 1, k + 1) + "\n";
+    s += "CELL_TYPES " + std::to_string(cells) + "\n";
+    for (int c = 0; c < cells; ++c) s += "12\n";
+    s += "POINT_DATA " + std::to_string(n * n * n) + "\nSCALARS s float 1\nLOOKUP_TABLE default\n";
+    for (int p = 0; p < n * n * n; ++p) s += "1\n";
+    s += "VECTORS v float\n";
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                s += rotating ? std::to_string(2 - j) + " " + std::to_string(i - 2) + " 0\n"
+                              : std::string("0 0 0\n");
+    const std::string path = dir + (rotating ? "/rotating.vtk" : "/still.vtk");
+    std::ofstream(path) << s;
+    return path;
+}
+
+std::string bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+int count_files(const std::string& dir) {
+    if (!std::filesystem::is_directory(dir)) return 0;
+    int n = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++n;
+    return n;
+}
+
+TEST(CliAdvect, WritesMovingFramesAndStillFramesForZeroVelocity) {
+    const std::string dir = make_temp_dir();
+    for (const char* method : {"backward", "forward"}) {
+        const std::string frames = dir + "/rot_" + method;
+        const auto run =
+            run_cli("advect " + shell_quote(grid_file(dir, true)) +
+                    " --vectors v --slice 2,2,2,0,0,1 --steps 3 --size 48x32 " +
+                    "--resolution 24 --method " + method + " --frames " + shell_quote(frames));
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        EXPECT_EQ(count_files(frames), 4);
+        EXPECT_TRUE(bytes(frames + "/frame_0000.png") != bytes(frames + "/frame_0003.png"))
+            << method << ": the texture did not move";
+    }
+    const std::string still = dir + "/still";
+    const auto run = run_cli("advect " + shell_quote(grid_file(dir, false)) +
+                             " --vectors v --steps 3 --size 48x32 --resolution 24 --frames " +
+                             shell_quote(still));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.out.find("still frames"), std::string::npos) << run.out;
+    ASSERT_EQ(count_files(still), 4);
+    EXPECT_TRUE(bytes(still + "/frame_0000.png") == bytes(still + "/frame_0003.png"))
+        << "zero velocity: frames differ";
+}
+
+TEST(CliAdvectBadInput, OneLineErrorsAndNoFrames) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = shell_quote(grid_file(dir, true));
+    struct Case {
+        std::string args;
+        std::string says;
+        int exit_code;
+    };
+    const Case cases[] = {
+        {"--vectors s", "no 3-component point array 's' (vector arrays: v)", 1},
+        {"--vectors nope", "no 3-component point array 'nope'", 1},
+        {"--vectors v --slice 2,2,9,0,0,1", "misses the mesh", 1},
+        {"--vectors v --slice 2,2,2,0,0,0", "slice normal is zero", 1},
+        {"--vectors v --unsteady", "this mesh has 1 time step", 1},
+        {"--vectors v --method sideways", "--method must be backward or forward", 2},
+        {"--vectors v --reinject 3", "--reinject must be even", 2},
+    };
+    int k = 0;
+    for (const Case& c : cases) {
+        const std::string frames = dir + "/frames" + std::to_string(k++);
+        const auto run =
+            run_cli("advect " + mesh + " " + c.args + " --steps 2 --frames " + shell_quote(frames));
+        EXPECT_EQ(run.exit_code, c.exit_code) << c.args << ": " << run.err;
+        EXPECT_NE(run.err.find(c.says), std::string::npos) << c.args << ": " << run.err;
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+        EXPECT_EQ(count_files(frames), 0) << c.args;
+    }
+    // The frames folder cannot be made: a file is in the way.
+    std::ofstream(dir + "/file") << "x";
+    const auto run =
+        run_cli("advect " + mesh + " --vectors v --frames " + shell_quote(dir + "/file/sub"));
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_NE(run.err.find("cannot create the frames folder"), std::string::npos) << run.err;
+}
+
+}  // namespace
+}  // namespace tr
