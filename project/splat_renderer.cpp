@@ -19,6 +19,7 @@ struct Splat {
     Vec3 center;
     Vec3 color;          // the transfer function's colour at the point's value
     double kappa;        // its extinction
+    double h;            // the kernel's scale: the spacing, or the point's radius
     int x0, y0, x1, y1;  // pixels whose centres may lie in its footprint, inclusive
 };
 
@@ -57,6 +58,7 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
     TR_CHECK(in.tf != nullptr && in.footprint != nullptr && in.camera != nullptr);
     TR_CHECK_EQ(in.scalar.size(), in.points.size());
     TR_CHECK(in.spacing > 0);
+    if (!in.radius.empty()) TR_CHECK_EQ(in.radius.size(), in.points.size());
     const CameraFrame& camera = *in.camera;
     const int w = camera.width(), h = camera.height();
     if (in.opaque_color) {
@@ -65,7 +67,7 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
     }
     if (in.opaque_depth) TR_CHECK_EQ(in.opaque_depth->size(), static_cast<std::size_t>(w) * h);
     const bool orthographic = camera.orthographic();
-    const double radius = in.footprint->support() * in.spacing;  // world units
+    const double support = in.footprint->support();
     // Pixels per world unit at unit depth (perspective) or anywhere (orthographic).
     const double per_unit =
         std::abs(camera.project(camera.eye() + camera.forward()).y -
@@ -79,6 +81,8 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
         if (!(kappa > 0)) continue;
         const Vec3& p = in.points[i];
         const Vec3 s = camera.project(p);
+        const double kernel_h = in.radius.empty() ? in.spacing : static_cast<double>(in.radius[i]);
+        const double radius = support * kernel_h;  // world units
         double r_px;
         if (orthographic) {
             r_px = radius * per_unit;
@@ -92,6 +96,7 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
         Splat splat{p,
                     in.tf->color(in.scalar[i]),
                     kappa,
+                    kernel_h,
                     static_cast<int>(std::floor(s.x - r_px - 0.5)),
                     static_cast<int>(std::floor(s.y - r_px - 0.5)),
                     static_cast<int>(std::ceil(s.x + r_px - 0.5)),
@@ -150,7 +155,7 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
 
     Image image(w, h, Vec3f(in.background));
     if (in.opaque_color) image = *in.opaque_color;
-    const double spacing = in.spacing, radius_sq = radius * radius;
+    const double support_sq = support * support;
     std::atomic<std::size_t> fragments{0};
     parallel_for(0, bins.size(), 1, [&](std::size_t tile) {
         const int x0 = static_cast<int>(tile % tiles_x) * kTile;
@@ -195,11 +200,11 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
                     const Vec3 v = s.center - ray.origin;
                     const double t = glm::dot(v, ray.direction);
                     const double rho_sq = glm::dot(v, v) - t * t;
-                    if (!(rho_sq < radius_sq) || !(t > 0)) continue;
+                    if (!(rho_sq < support_sq * s.h * s.h) || !(t > 0)) continue;
                     const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
                     if (in.opaque_depth && !(t < (*in.opaque_depth)[pixel])) continue;
-                    const double tau = s.kappa * spacing *
-                                       (*in.footprint)(std::sqrt(std::max(rho_sq, 0.0)) / spacing);
+                    const double tau =
+                        s.kappa * s.h * (*in.footprint)(std::sqrt(std::max(rho_sq, 0.0)) / s.h);
                     ++count;
                     if (sheets) {
                         const int local = (y - y0) * kTile + (x - x0);

@@ -46,6 +46,9 @@ struct SplatInputs {
     std::span<const Vec3> points;
     std::span<const float> scalar;  // one per point
     double spacing = 1.0;           // h: the lattice spacing the kernel is scaled to (> 0)
+    // Per-point h instead of `spacing` (SPH smoothing lengths: each > 0 and finite, checked by
+    // the caller), or empty. The sheet buffer's sheets stay `spacing` thick.
+    std::span<const float> radius;
     const TransferFunction* tf = nullptr;
     const SplatFootprint* footprint = nullptr;  // the kernel's table
     const CameraFrame* camera = nullptr;
@@ -64,7 +67,8 @@ struct SplatStats {
     double raster_ms = 0;
 };
 
-// The picture. Preconditions: scalar.size() == points.size(), spacing > 0, opaque buffers of
+// The picture. Preconditions: scalar.size() == points.size(), spacing > 0, radius empty or one per
+// point, opaque buffers of
 // the camera's size (checked: a wrong call would read out of bounds). Cost: O(points log points)
 // for the order plus the splats' footprints in pixels; memory O(points + pixels).
 Image render_splats(const SplatInputs& in, SplatStats* stats = nullptr);
