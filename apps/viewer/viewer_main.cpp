@@ -47,6 +47,7 @@ struct Args {
     double opacity = 0;
     double unit_distance = 0;
     bool panel_in_screenshot = false;
+    std::string legend = "on";  // the colour legend (ImGui): on or off
     int exit_after_frames = 0;  // interactive mode: quit after this many frames (tests)
     // A flow volume from the command line (as `tetrender flowvol` names the options).
     std::string flowvol_vectors;
@@ -232,7 +233,10 @@ int run(const Args& args) {
         {
             VolumeView view(vs, **renderer, *integrator, !headless);
             std::optional<ViewerPanel> panel;
-            if (ui) panel.emplace(view);
+            if (ui) {
+                panel.emplace(view);
+                panel->set_legend(args.legend == "on");
+            }
             if (headless) {
                 code = run_headless_orbit(view, panel ? &*panel : nullptr,
                                           {args.screenshot, args.frames, args.orbit});
@@ -333,6 +337,10 @@ int main(int argc, char** argv) {
                    "(default 2; 0: off)")
         ->check(CLI::Number)
         ->needs(vectors);
+    app.add_option("--legend", args.legend,
+                   "The colour legend (name, range, ticks) in the window: on (default) or off; "
+                   "in a headless screenshot only with --panel-in-screenshot")
+        ->check(CLI::IsMember({"on", "off"}));
     app.add_flag("--panel-in-screenshot", args.panel_in_screenshot,
                  "Headless: draw the ImGui panel into the screenshot");
     app.add_option("--exit-after-frames", args.exit_after_frames,

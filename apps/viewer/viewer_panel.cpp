@@ -1,3 +1,4 @@
+#include <apps/viewer/legend_overlay.h>
 #include <apps/viewer/viewer_input.h>
 #include <apps/viewer/viewer_panel.h>
 #include <project/colormap.h>
@@ -65,6 +66,11 @@ void ViewerPanel::draw(const Camera& camera, bool submit) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
+    if (show_legend_) {
+        ViewerScene& vs = view_.scene();
+        const std::string& name = vs.fused.empty() ? vs.scalar_name : vs.fused[0].scalar_name;
+        draw_legend_overlay(vs.volume().transfer_function, name);
+    }
     if (show_panel_) draw_panel();
     if (show_panel_ && view_.flow()) view_.flow()->draw_seed_outline(camera);
     if (show_keys_) {
@@ -98,6 +104,7 @@ void ViewerPanel::draw_panel() {
     ImGui::Text("%s", vs.volume().mesh.filename().string().c_str());
     ImGui::Text("%zu cells%s", vs.sort.mesh().num_real_tets(),
                 vs.sort.sorted->convexified ? " (+ convexification for the sort)" : "");
+    ImGui::Checkbox("colour legend", &show_legend_);
     if (draw_transfer_section(vs.arrays, vs.scalar_name, vs.edit, vs.volume().transfer_function,
                               vs.sort.mesh().bounds(), opacity_,
                               [&](const std::string& name) { view_.select_scalar(name); })) {

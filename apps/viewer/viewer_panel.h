@@ -1,7 +1,7 @@
 #pragma once
-// The viewer's Dear ImGui overlay: the panel (array, colour map, opacity curve, unit distance,
-// method, sort and integrator or the particle-based accumulation, the flow volume's section,
-// timings; for a scene of several volumes one transfer-function section per volume and the
+// The viewer's Dear ImGui overlay: the colour legend, the panel (array, colour map, opacity curve,
+// unit distance, method, sort and integrator or the particle-based accumulation, the flow volume's
+// section, timings; for a scene of several volumes one transfer-function section per volume and the
 // fused modes), the seed outline and the keys window.
 
 #include <apps/viewer/opacity_editor.h>
@@ -25,6 +25,9 @@ class ViewerPanel {
 
     void toggle_panel() { show_panel_ = !show_panel_; }
     void toggle_keys() { show_keys_ = !show_keys_; }
+    // The colour legend of volume 0's transfer function (apps/viewer/legend_overlay.h); on by
+    // default, `--legend off` and the panel's checkbox turn it off.
+    void set_legend(bool on) { show_legend_ = on; }
     // Whether an opacity point is being dragged.
     bool dragging() const;
     // A frame's time, for the panel's rolling mean over the last 30.
@@ -41,7 +44,7 @@ class ViewerPanel {
     OpacityEditor opacity_;
     std::vector<OpacityEditor> fused_opacity_;  // one per volume of a scene of several
     std::deque<double> frame_ms_;
-    bool show_panel_ = true, show_keys_ = false;
+    bool show_panel_ = true, show_keys_ = false, show_legend_ = true;
 };
 
 }  // namespace tr::viewer
