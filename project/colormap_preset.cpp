@@ -475,6 +475,19 @@ std::vector<OpacityPoint> preset_opacity(const ColormapPreset& preset, double lo
     return out;
 }
 
+Result<TransferFunction> preset_transfer_function(const ColormapPreset& preset, double lo,
+                                                  double hi, std::vector<OpacityPoint> opacity,
+                                                  double unit_distance) {
+    if (!std::isfinite(lo) || !std::isfinite(hi) || hi < lo) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "colour map '" + preset.name + "': the range is empty or not finite");
+    }
+    std::vector<OpacityPoint> own = preset_opacity(preset, lo, hi);
+    return TransferFunction::create(preset_colors(preset, lo, hi),
+                                    own.empty() ? std::move(opacity) : std::move(own),
+                                    unit_distance);
+}
+
 std::vector<std::string> builtin_colormap_preset_names() {
     std::vector<std::string> names;
     for (const auto& b : builtins()) names.push_back(b.name);

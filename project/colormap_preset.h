@@ -61,6 +61,13 @@ std::vector<ColorPoint> preset_colors(const ColormapPreset& preset, double lo, d
 // 0.999 (the transfer function's opacity is below 1).
 std::vector<OpacityPoint> preset_opacity(const ColormapPreset& preset, double lo, double hi);
 
+// A transfer function from a preset over [lo, hi]: preset_colors, and preset_opacity when the
+// preset has opacity points, else `opacity` (e.g. the quick mode's ramp). Errors: those of
+// TransferFunction::create (naming the point), a range that is not finite.
+Result<TransferFunction> preset_transfer_function(const ColormapPreset& preset, double lo,
+                                                  double hi, std::vector<OpacityPoint> opacity,
+                                                  double unit_distance);
+
 // Built-in presets by ParaView name: "Cool to Warm", "Viridis (matplotlib)", "Jet",
 // "Rainbow Uniform", "Black-Body Radiation", "Inferno (matplotlib)", "Grayscale".
 std::vector<std::string> builtin_colormap_preset_names();

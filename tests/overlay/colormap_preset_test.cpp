@@ -73,6 +73,7 @@ TEST(ColormapPreset, ASampleFileGivesTheColoursAtItsControlPoints) {
     auto missing = read_colormap_preset(file, "Plasma");
     std::filesystem::remove(file);
     ASSERT_TRUE(three.ok()) << three.error().to_string();
+    EXPECT_EQ(three->name, "Three");
     ASSERT_TRUE(first.ok());
     EXPECT_EQ(first->name, "Dark to Light");
     ASSERT_TRUE(first->nan_color.has_value());
@@ -87,6 +88,15 @@ TEST(ColormapPreset, ASampleFileGivesTheColoursAtItsControlPoints) {
     EXPECT_LT(difference(tf.color(12.5), {0.5, 0.5, 0}), 1e-12);  // RGB: linear between
     EXPECT_DOUBLE_EQ(tf.opacity(0), 0.0);
     EXPECT_DOUBLE_EQ(tf.opacity(100), 0.999);  // 1 clamped below 1
+    // preset_transfer_function: the preset's own opacity wins; without one, the given ramp.
+    auto own = preset_transfer_function(*three, 0, 100, {{0, 0.2}}, 2.0);
+    ASSERT_TRUE(own.ok());
+    EXPECT_DOUBLE_EQ(own->opacity(100), 0.999);
+    EXPECT_EQ(own->unit_distance(), 2.0);
+    auto ramp = preset_transfer_function(*first, 0, 100, {{0, 0.0}, {100, 0.3}}, 1.0);
+    ASSERT_TRUE(ramp.ok());
+    EXPECT_DOUBLE_EQ(ramp->opacity(50), 0.15);
+    EXPECT_FALSE(preset_transfer_function(*first, 0, NAN, {{0, 0.0}}, 1.0).ok());
 
     // Lab between black and white: the middle is L* = 50, sRGB 0.4663 (CIE's formulas: Y =
     // ((50 + 16) / 116)^3 = 0.1842, then the sRGB curve), grey.
