@@ -138,7 +138,9 @@ std::vector<TexturedMeshView> TextureAdvection::views() const {
         view.positions = positions(k);
         view.texcoords = layer.texcoords;
         view.triangles = sheet_->triangles;
-        view.alive = layer.alive;
+        // Backward layers never lose points: no mask, so the rasteriser sees that every layer
+        // shares the sheet's positions and triangles and traverses them once.
+        if (options_.method == AdvectionMethod::kForward) view.alive = layer.alive;
         view.weight = weight(layer);
         out.push_back(view);
     }

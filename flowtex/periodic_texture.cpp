@@ -91,7 +91,11 @@ float PeriodicTexture::sample_level(double u, double v, int level) const {
 
 float PeriodicTexture::sample(double u, double v, double footprint) const {
     if (!(footprint > 1.0)) return sample_level(u, v, 0);
-    const double lod = std::log2(footprint);
+    return sample_lod(u, v, std::log2(footprint));
+}
+
+float PeriodicTexture::sample_lod(double u, double v, double lod) const {
+    if (!(lod > 0.0)) return sample_level(u, v, 0);
     const int last = levels() - 1;
     if (lod >= last) return levels_.back()[0];
     const int l0 = static_cast<int>(lod);

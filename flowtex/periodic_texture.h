@@ -25,6 +25,10 @@ class PeriodicTexture {
     // clamped to the coarsest (the mean). Cost: 8 texel reads.
     float sample(double u, double v, double footprint) const;
 
+    // The same at a level of detail lod = log2(footprint) computed by the caller (once per
+    // triangle): lod <= 0 is bilinear on level 0.
+    float sample_lod(double u, double v, double lod) const;
+
     // Bilinear on one level (0 = full size). Precondition: 0 <= level < levels().
     float sample_level(double u, double v, int level) const;
 

@@ -10,30 +10,42 @@ namespace {
 
 constexpr int kBandRows = 8;
 
+// log2(x) for x > 0, exact at powers of two and linear between them (within 0.086): enough to
+// pick a mip level, as graphics hardware does, at a fraction of std::log2's cost.
+double approximate_log2(double x) {
+    int exponent = 0;
+    const double mantissa = std::frexp(x, &exponent);  // in [0.5, 1)
+    return exponent - 2.0 + 2.0 * mantissa;
+}
+
 struct Projected {
     double x = 0, y = 0, inv_w = 0;  // screen position, 1 / depth (1 for orthographic)
     bool ok = false;
 };
 
-// Rasterises one layer's triangles into `values` (NaN = not covered).
-void raster_layer(const CameraFrame& frame, const TexturedMeshView& layer,
-                  const PeriodicTexture& texture, std::vector<float>& values) {
+// Rasterises the triangles of layers[first, last) (which share positions, triangles and the
+// alive mask) once, writing each layer's texture value into values[k] (NaN = not covered).
+void raster_group(const CameraFrame& frame, std::span<const TexturedMeshView> layers,
+                  std::size_t first, std::size_t last, const PeriodicTexture& texture,
+                  std::vector<std::vector<float>>& values) {
+    const TexturedMeshView& geometry = layers[first];
     const int width = frame.width(), height = frame.height();
-    const std::size_t n = layer.positions.size();
+    const std::size_t n = geometry.positions.size();
     std::vector<Projected> proj(n);
     const bool ortho = frame.orthographic();
     parallel_for(0, n, 4096, [&](std::size_t i) {
-        if (!layer.alive.empty() && !layer.alive[i]) return;
-        const Vec3 s = frame.project(layer.positions[i]);
+        if (!geometry.alive.empty() && !geometry.alive[i]) return;
+        const Vec3 s = frame.project(geometry.positions[i]);
         if (!ortho && !(s.z > 1e-9)) return;
         proj[i] = Projected{s.x, s.y, ortho ? 1.0 : 1.0 / s.z, true};
     });
     // Bin triangles by the bands of rows their bounds touch (counting sort: order kept).
     const int num_bands = (height + kBandRows - 1) / kBandRows;
+    const std::size_t num_tris = geometry.triangles.size();
     std::vector<std::uint32_t> band_count(static_cast<std::size_t>(num_bands) + 1, 0);
-    std::vector<std::array<int, 2>> tri_bands(layer.triangles.size(), {0, -1});
-    for (std::size_t t = 0; t < layer.triangles.size(); ++t) {
-        const auto& tri = layer.triangles[t];
+    std::vector<std::array<int, 2>> tri_bands(num_tris, {0, -1});
+    for (std::size_t t = 0; t < num_tris; ++t) {
+        const auto& tri = geometry.triangles[t];
         const Projected &a = proj[tri[0]], &b = proj[tri[1]], &c = proj[tri[2]];
         if (!a.ok || !b.ok || !c.ok) continue;
         const double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
@@ -49,55 +61,73 @@ void raster_layer(const CameraFrame& frame, const TexturedMeshView& layer,
     std::vector<std::uint32_t> band_tris(band_count.back());
     {
         std::vector<std::uint32_t> fill(band_count.begin(), band_count.end() - 1);
-        for (std::size_t t = 0; t < tri_bands.size(); ++t) {
+        for (std::size_t t = 0; t < num_tris; ++t) {
             for (int band = tri_bands[t][0]; band <= tri_bands[t][1]; ++band) {
                 band_tris[fill[band]++] = static_cast<std::uint32_t>(t);
             }
         }
     }
-    const double tex_size = texture.size();
+    const std::size_t num_layers = last - first;
+    const double log2_size = std::log2(static_cast<double>(texture.size()));
     parallel_for(0, static_cast<std::size_t>(num_bands), 1, [&](std::size_t band) {
         const int row0 = static_cast<int>(band) * kBandRows;
         const int row1 = std::min(height, row0 + kBandRows);
+        constexpr std::size_t kMaxLayers = 4;
+        std::array<glm::dvec2, kMaxLayers> qa{}, qb{}, qc{};
+        std::array<double, kMaxLayers> lod{};
         for (std::uint32_t k = band_count[band]; k < band_count[band + 1]; ++k) {
-            const auto& tri = layer.triangles[band_tris[k]];
+            const auto& tri = geometry.triangles[band_tris[k]];
             const Projected &a = proj[tri[0]], &b = proj[tri[1]], &c = proj[tri[2]];
             const double area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
             if (!(std::abs(area) > 1e-12)) continue;
-            const glm::dvec2 ta = layer.texcoords[tri[0]], tb = layer.texcoords[tri[1]],
-                             tc = layer.texcoords[tri[2]];
-            // Screen-space derivatives of the texture coordinates (affine over the triangle).
-            const double inv_area = 1.0 / area;
-            const glm::dvec2 e1 = tb - ta, e2 = tc - ta;
-            const double dx1 = b.x - a.x, dy1 = b.y - a.y, dx2 = c.x - a.x, dy2 = c.y - a.y;
-            const glm::dvec2 d_dx = (e1 * dy2 - e2 * dy1) * inv_area;
-            const glm::dvec2 d_dy = (e2 * dx1 - e1 * dx2) * inv_area;
-            const double footprint =
-                tex_size * std::sqrt(std::max(glm::dot(d_dx, d_dx), glm::dot(d_dy, d_dy)));
             const double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
             const double x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
             const int j0 = std::max(row0, static_cast<int>(std::floor(y0 - 0.5)));
             const int j1 = std::min(row1 - 1, static_cast<int>(std::ceil(y1 - 0.5)));
             const int i0 = std::max(0, static_cast<int>(std::floor(x0 - 0.5)));
             const int i1 = std::min(width - 1, static_cast<int>(std::ceil(x1 - 0.5)));
-            // Perspective-correct: interpolate t / w and 1 / w.
-            const glm::dvec2 qa = ta * a.inv_w, qb = tb * b.inv_w, qc = tc * c.inv_w;
+            if (j0 > j1 || i0 > i1) continue;
+            const double inv_area = 1.0 / area;
+            const double dx1 = b.x - a.x, dy1 = b.y - a.y, dx2 = c.x - a.x, dy2 = c.y - a.y;
+            // The layers' set-up waits for the first covered pixel: at one point per pixel,
+            // about half the triangles cover none.
+            bool set_up = false;
+            auto set_up_layers = [&] {
+                for (std::size_t l = 0; l < num_layers; ++l) {
+                    const TexturedMeshView& layer = layers[first + l];
+                    const glm::dvec2 ta = layer.texcoords[tri[0]], tb = layer.texcoords[tri[1]],
+                                     tc = layer.texcoords[tri[2]];
+                    // Screen-space derivatives of the texture coordinates (affine over the
+                    // triangle) give the mip level: log2 of the longer pixel step in texels.
+                    const glm::dvec2 e1 = tb - ta, e2 = tc - ta;
+                    const glm::dvec2 d_dx = (e1 * dy2 - e2 * dy1) * inv_area;
+                    const glm::dvec2 d_dy = (e2 * dx1 - e1 * dx2) * inv_area;
+                    const double step2 = std::max(glm::dot(d_dx, d_dx), glm::dot(d_dy, d_dy));
+                    lod[l] = step2 > 0 ? 0.5 * approximate_log2(step2) + log2_size : 0.0;
+                    // Perspective-correct: interpolate t / w and 1 / w.
+                    qa[l] = ta * a.inv_w;
+                    qb[l] = tb * b.inv_w;
+                    qc[l] = tc * c.inv_w;
+                }
+                set_up = true;
+            };
             constexpr double kEdgeSlack = -1e-9;
             for (int j = j0; j <= j1; ++j) {
                 const double py = j + 0.5;
-                float* row = values.data() + static_cast<std::size_t>(j) * width;
+                const std::size_t row = static_cast<std::size_t>(j) * width;
                 for (int i = i0; i <= i1; ++i) {
                     const double px = i + 0.5;
                     // Barycentric weights of b and c (and a = 1 - wb - wc).
-                    const double wb =
-                        ((px - a.x) * (c.y - a.y) - (c.x - a.x) * (py - a.y)) * inv_area;
-                    const double wc =
-                        ((b.x - a.x) * (py - a.y) - (px - a.x) * (b.y - a.y)) * inv_area;
+                    const double wb = ((px - a.x) * dy2 - dx2 * (py - a.y)) * inv_area;
+                    const double wc = (dx1 * (py - a.y) - (px - a.x) * dy1) * inv_area;
                     const double wa = 1.0 - wb - wc;
                     if (wa < kEdgeSlack || wb < kEdgeSlack || wc < kEdgeSlack) continue;
-                    const double inv_w = wa * a.inv_w + wb * b.inv_w + wc * c.inv_w;
-                    const glm::dvec2 uv = (wa * qa + wb * qb + wc * qc) / inv_w;
-                    row[i] = texture.sample(uv.x, uv.y, footprint);
+                    if (!set_up) set_up_layers();
+                    const double inv_w = 1.0 / (wa * a.inv_w + wb * b.inv_w + wc * c.inv_w);
+                    for (std::size_t l = 0; l < num_layers; ++l) {
+                        const glm::dvec2 uv = (wa * qa[l] + wb * qb[l] + wc * qc[l]) * inv_w;
+                        values[first + l][row + i] = texture.sample_lod(uv.x, uv.y, lod[l]);
+                    }
                 }
             }
         }
@@ -112,8 +142,21 @@ std::vector<float> rasterize_sheet_values(const CameraFrame& frame,
     const std::size_t num_pixels = static_cast<std::size_t>(frame.width()) * frame.height();
     const float nan = std::numeric_limits<float>::quiet_NaN();
     std::vector<std::vector<float>> per_layer(layers.size(), std::vector<float>(num_pixels, nan));
-    for (std::size_t k = 0; k < layers.size(); ++k) {
-        raster_layer(frame, layers[k], texture, per_layer[k]);
+    // Layers that share their geometry (backward advection: every layer) are traversed once.
+    for (std::size_t first = 0; first < layers.size();) {
+        std::size_t last = first + 1;
+        auto same = [&](const TexturedMeshView& x, const TexturedMeshView& y) {
+            return x.positions.data() == y.positions.data() &&
+                   x.positions.size() == y.positions.size() &&
+                   x.triangles.data() == y.triangles.data() &&
+                   x.triangles.size() == y.triangles.size() && x.alive.data() == y.alive.data() &&
+                   x.alive.size() == y.alive.size();
+        };
+        while (last < layers.size() && last - first < 4 && same(layers[first], layers[last])) {
+            ++last;
+        }
+        raster_group(frame, layers, first, last, texture, per_layer);
+        first = last;
     }
     std::vector<float> out(num_pixels, nan);
     parallel_for(0, num_pixels, 4096, [&](std::size_t p) {
