@@ -31,17 +31,26 @@ Status annotate(Image& image, const Scene& scene, Pipeline& pipeline,
         draw_axes_triad(image, scene.camera, *font);
     }
     if (options.legend) {
-        const SceneVolume& volume = scene.volumes.front();
-        LegendSpec spec = options.legend_spec;
-        if (spec.title.empty()) {
-            spec.title = volume.scalar;
-            if (volume.component >= 0) {
-                spec.title.append("[").append(std::to_string(volume.component)).append("]");
+        const std::size_t count = options.every_volume ? scene.volumes.size() : 1;
+        for (std::size_t v = 0; v < count; ++v) {
+            const SceneVolume& volume = scene.volumes[v];
+            LegendSpec spec = options.legend_spec;
+            if (v > 0) spec.lo = spec.hi = std::nullopt;  // the overrides are volume 0's
+            if (spec.title.empty() || v > 0) {
+                spec.title = volume.scalar;
+                if (volume.component >= 0) {
+                    spec.title.append("[").append(std::to_string(volume.component)).append("]");
+                }
+            }
+            if (!spec.background) spec.background = Vec3f(scene.background);
+            // Each legend avoids what is drawn already, the earlier legends included.
+            auto layout = draw_legend(image, volume.transfer_function, spec);
+            if (!layout) {
+                Error e = layout.error();
+                if (count > 1) e.message = "volume " + std::to_string(v) + ": " + e.message;
+                return e;
             }
         }
-        if (!spec.background) spec.background = Vec3f(scene.background);
-        auto layout = draw_legend(image, volume.transfer_function, spec);
-        if (!layout) return layout.error();
     }
     return {};
 }

@@ -17,17 +17,22 @@ struct AnnotationOptions {
     bool legend = true;
     bool bounding_box = false;
     bool axes = false;
+    // A legend for every volume of a scene of several (each placed off the volume and off the
+    // legends before it), or volume 0's only.
+    bool every_volume = true;
     // The legend's settings. Left empty, the title is volume 0's array ("name" or "name[c]" for
     // a component) and the range its transfer function's colour points'; the background is the
-    // scene's.
+    // scene's. The title and range given here are volume 0's; other volumes' legends always
+    // take their own.
     LegendSpec legend_spec;
     Vec3f box_color{0.85f, 0.85f, 0.85f};
 };
 
 // Draws what `options` asks onto `image`, which must be the scene's picture (scene.width x
 // scene.height). The bounding box is that of every volume's mesh, taken from `pipeline`'s cache
-// (loaded if it is not there). Errors: an image of another size; the legend's (a picture too
-// small for it, a log scale over a range that is not positive); loading a mesh.
+// (loaded if it is not there). Errors: an image of another size; a legend's (a picture too
+// small for it, a log scale over a range that is not positive; "volume i: " in front when the
+// scene has several); loading a mesh.
 Status annotate(Image& image, const Scene& scene, Pipeline& pipeline,
                 const AnnotationOptions& options);
 

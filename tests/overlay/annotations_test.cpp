@@ -91,6 +91,36 @@ TEST(Annotations, LegendBesideTheVolumeAndBoxOnTheCorners) {
     EXPECT_EQ(corners, 8);
 }
 
+TEST(Annotations, ALegendPerVolumeEachOffTheOthers) {
+    Scene scene = grid_scene();
+    SceneVolume second = scene.volumes[0];
+    second.scalar = "other";
+    second.transfer_function = make_quick_transfer_function("Jet", -5.0, 5.0, 0.5, 1.0).value();
+    scene.volumes.push_back(second);
+    Pipeline pipeline;  // nothing loaded: no bounding box asked
+    Image annotated(scene.width, scene.height, Vec3f(scene.background));
+    ASSERT_TRUE(annotate(annotated, scene, pipeline, AnnotationOptions{}).ok());
+    // The same as drawing the two legends one after the other; they do not overlap.
+    Image expected(scene.width, scene.height, Vec3f(scene.background));
+    LegendSpec spec;
+    spec.background = Vec3f(scene.background);
+    spec.title = "wave";
+    auto first = draw_legend(expected, scene.volumes[0].transfer_function, spec);
+    spec.title = "other";
+    auto other = draw_legend(expected, scene.volumes[1].transfer_function, spec);
+    ASSERT_TRUE(first.ok() && other.ok());
+    EXPECT_EQ(annotated.pixels, expected.pixels);
+    const PixelRect& a = first->whole;
+    const PixelRect& b = other->whole;
+    EXPECT_TRUE(a.x1 <= b.x0 || b.x1 <= a.x0 || a.y1 <= b.y0 || b.y1 <= a.y0);
+    // Volume 0's only, when asked.
+    Image one(scene.width, scene.height, Vec3f(scene.background));
+    AnnotationOptions only_first;
+    only_first.every_volume = false;
+    ASSERT_TRUE(annotate(one, scene, pipeline, only_first).ok());
+    EXPECT_NE(one.pixels, annotated.pixels);
+}
+
 TEST(Annotations, WrongSizeIsAnError) {
     const Scene scene = grid_scene();
     Pipeline pipeline;
