@@ -264,8 +264,8 @@ json numbers_json(const std::vector<double>& values) {
 // Published control points. Cool to Warm, Black-Body Radiation, Jet, Rainbow Uniform and
 // Grayscale as ParaView defines them (Remoting/Views/ColorMaps.json); Viridis and Inferno from
 // matplotlib's 256-entry tables (CC0; Smith & van der Walt), every 16th entry and the last:
-// between them the maps are linear in RGB (within 1/255 of the full tables' own interpolation
-// except in Inferno's darkest sixteenth).
+// between them the maps are linear in RGB (how far that is from the full tables between the
+// samples has not been measured here).
 struct Builtin {
     const char* name;
     const char* space;
