@@ -97,3 +97,21 @@ def cli() -> str:
 
 def run_cli(cli: str, *args: str) -> subprocess.CompletedProcess:
     return subprocess.run([cli, *args], capture_output=True, text=True, check=False)
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "realdata: reads ../shared/data (ctest label realdata)")
+
+
+DATA = Path(os.environ.get("TETRENDER_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve().parent / "shared" / "data"
+
+
+@pytest.fixture
+def data_dir() -> Path:
+    """../shared/data: the test is skipped with a message when it is absent, failed when CI=true
+    (as the C++ realdata tests do)."""
+    if not DATA.is_dir():
+        if os.environ.get("CI") == "true":
+            pytest.fail(f"CI=true but the shared data folder is missing: {DATA}")
+        pytest.skip(f"no shared data at {DATA}")
+    return DATA

@@ -148,3 +148,16 @@ def test_bad_input_raises_with_the_library_message(ring):
         tetrender.read("no_such.vtu")
     with pytest.raises(tetrender.Error, match="expected a tetrender.Mesh"):
         tetrender.tetrahedralize(42)
+
+
+def test_meshio_wedges_keep_vtk_node_order_both_ways(output_dir):
+    # One VTK wedge (positive volume in VTK's order: the first triangle's normal points away
+    # from the second triangle); meshio stores it in Gmsh's order (nodes 1-2, 4-5 swapped).
+    points = np.array([[0, 0, 0], [0, 1, 0], [1, 0, 0], [0, 0, 1], [0, 1, 1], [1, 0, 1]], dtype=float)
+    wedge = tetrender.Mesh(points, np.arange(6), None, [13], {"s": points[:, 2]})
+    assert tetrender.tetrahedralize(wedge).report["inverted_cells"] == 0
+    path = output_dir / "wedge.vtu"
+    wedge.to_meshio().write(path)
+    np.testing.assert_array_equal(tetrender.read(path).connectivity, np.arange(6))
+    back = tetrender.Mesh.from_meshio(meshio.read(path))
+    np.testing.assert_array_equal(back.connectivity, np.arange(6))

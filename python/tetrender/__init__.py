@@ -64,6 +64,9 @@ CELL_TYPES = {
     "wedge15": 26,
     "pyramid13": 27,
 }
+# meshio orders a linear wedge's nodes as Gmsh does, VTK the other way round (its first
+# triangle's normal points outwards): meshio/_vtk_common.py swaps nodes 1-2 and 4-5, and so do we.
+_MESHIO_WEDGE_ORDER = np.array([0, 2, 1, 3, 5, 4])
 _SURFACE_TYPES = {"vertex", "line", "triangle", "polygon", "quad", "line3", "triangle6", "quad8"}
 
 
@@ -177,7 +180,8 @@ class Mesh:
 
     @classmethod
     def from_meshio(cls, mesh: Any, volume_only: bool = True, name: str = "<meshio mesh>") -> "Mesh":
-        """A Mesh from a ``meshio.Mesh`` (meshio keeps VTK's node order).
+        """A Mesh from a ``meshio.Mesh`` (meshio keeps VTK's node order but for linear wedges,
+        whose nodes it orders as Gmsh does: they are put back in VTK's order here).
 
         ``volume_only`` drops blocks of vertices, lines and surface cells (a Gmsh file's
         boundary triangles), which tetrahedralize() would refuse; their cell_data go with them.
@@ -190,6 +194,8 @@ class Mesh:
                 raise Error(f"error: {name}: cell type '{block.type}' has no VTK id here "
                             f"(known: {', '.join(CELL_TYPES)})")
             data = np.asarray(block.data, dtype=np.int64)
+            if block.type == "wedge":
+                data = data[:, _MESHIO_WEDGE_ORDER]
             connectivity.append(data.reshape(-1))
             sizes.append(np.full(len(data), data.shape[1], dtype=np.int64))
             types.append(np.full(len(data), CELL_TYPES[block.type], dtype=np.uint8))
@@ -281,6 +287,8 @@ class Mesh:
                 end += 1
             nodes = offsets[start + 1] - offsets[start]
             data = self.connectivity[offsets[start]:offsets[end]].reshape(end - start, nodes)
+            if types[start] == CELL_TYPES["wedge"]:
+                data = data[:, _MESHIO_WEDGE_ORDER]
             blocks.append((names.get(int(types[start]), str(int(types[start]))), data))
             block_ranges.append((start, end))
             start = end
