@@ -161,3 +161,29 @@ def test_meshio_wedges_keep_vtk_node_order_both_ways(output_dir):
     np.testing.assert_array_equal(tetrender.read(path).connectivity, np.arange(6))
     back = tetrender.Mesh.from_meshio(meshio.read(path))
     np.testing.assert_array_equal(back.connectivity, np.arange(6))
+
+
+def test_a_field_added_to_a_read_mesh_is_handed_over(ring, output_dir):
+    path = output_dir / "ring.vtu"
+    meshio.write(path, meshio.Mesh(ring["points"], [("hexahedron", ring["hexahedra"])],
+                                   point_data={"temperature": ring["point_data"]["temperature"]}))
+    mesh = tetrender.read(path)
+    assert mesh._library_mesh() is mesh._handle  # as read: no copy
+    mesh.point_data["height"] = mesh.points[:, 2] * 3
+    tets = tetrender.tetrahedralize(mesh)
+    assert "height" in tets.point_data
+    np.testing.assert_allclose(tets.point_data["height"], tets.points[:, 2] * 3)
+    tets.cell_data["id"] = np.arange(tets.num_cells, dtype=np.float64)
+    assert not tets._unchanged()
+
+
+def test_pyvista_legacy_cells_of_mixed_sizes():
+    grid = types.SimpleNamespace(points=np.random.default_rng(2).random((12, 3)),
+                                 cells=np.array([4, 0, 1, 2, 3, 8, 4, 5, 6, 7, 8, 9, 10, 11, 4, 1, 2, 3, 4]),
+                                 celltypes=np.array([10, 12, 10], dtype=np.uint8), point_data={})
+    mesh = tetrender.Mesh.from_pyvista(grid)
+    np.testing.assert_array_equal(mesh.offsets, [0, 4, 12, 16])
+    np.testing.assert_array_equal(mesh.connectivity, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 1, 2, 3, 4])
+    grid.cells = grid.cells[:-1]
+    with pytest.raises(tetrender.Error, match="cells has 18 entries, the counts say 19"):
+        tetrender.Mesh.from_pyvista(grid)

@@ -144,7 +144,7 @@ class Mesh:
         mesh.name = name
         mesh._handle = handle
         mesh._tets = None
-        mesh._views = (mesh.points, mesh.connectivity, mesh.offsets, mesh.types)
+        mesh._views = mesh._snapshot()
         return mesh
 
     @classmethod
@@ -159,13 +159,23 @@ class Mesh:
             name=name,
         )
         mesh._tets = tets
-        mesh._views = (mesh.points, mesh.connectivity, mesh.offsets, mesh.types)
+        mesh._views = mesh._snapshot()
         return mesh
 
+    def _snapshot(self) -> tuple:
+        """The arrays this mesh holds now (compared by identity)."""
+        return (self.points, self.connectivity, self.offsets, self.types,
+                tuple(self.point_data.items()), tuple(self.cell_data.items()))
+
     def _unchanged(self) -> bool:
+        """Whether the arrays are still the library mesh's own (none replaced, added or removed)."""
         views = getattr(self, "_views", None)
-        current = (self.points, self.connectivity, self.offsets, self.types)
-        return views is not None and all(a is b for a, b in zip(views, current))
+        if views is None:
+            return False
+        now = self._snapshot()
+        same = lambda a, b: a is b or (isinstance(a, tuple) and len(a) == len(b) and all(
+            x[0] == y[0] and x[1] is y[1] for x, y in zip(a, b)))
+        return all(same(a, b) for a, b in zip(views, now))
 
     def _library_mesh(self) -> Any:
         """The library's copy of this mesh (made here, or the one it already is)."""
