@@ -36,7 +36,7 @@ def test_check_sort_passes_and_reports_the_centroid_violations(output_dir):
     result = run("check_sort.py", "--views", "3", "--size", "64", cwd=output_dir)
     assert result.returncode == 0, result.stdout + result.stderr
     rows = {line.split()[0]: line.split() for line in result.stdout.splitlines()[2:]}
-    assert rows["exact"][1:] [0] == "yes" and rows["exact"][3:] == ["0", "0"]
+    assert rows["exact"][1] == "yes" and rows["exact"][3:] == ["0", "0"]
     # The centroid baseline is no visibility order on the ring: the verifier sees it.
     assert int(rows["centroid"][3]) > 0
 
