@@ -150,6 +150,54 @@ TEST(SplatCompositing, SheetBufferPopsLessWhereTheOrderFlips) {
     EXPECT_GT(switch_jump[1], 2 * worst_jump[1]);
 }
 
+// The sheets are composited back to front whichever way the view runs along the chosen axis,
+// orthographic or perspective: a lattice red in its upper half and blue in its lower, opaque,
+// is red seen from above and blue seen from below, in both compositings alike.
+TEST(SplatCompositing, SheetsBackToFrontFromEitherSide) {
+    const TetMesh box = uniform_box(16, 8.0);
+    std::vector<float> scalar;
+    for (const Vec3& p : box.points()) scalar.push_back(p.z > 4.0 ? 1.0f : 0.0f);
+    const TransferFunction tf =
+        TransferFunction::create({{0, {0.0, 0.0, 1.0}}, {1, {1.0, 0.0, 0.0}}},
+                                 {{0, 0.95}, {1, 0.95}}, 0.5)
+            .value();
+    const SplatFootprint footprint(SplatKernel::kCrawfisMax);
+    for (bool perspective : {false, true}) {
+        for (double side : {1.0, -1.0}) {
+            // Slightly off the axis, so that the view is not exactly along z.
+            const Camera camera = camera_at({4.3, 3.8, 4 + 14 * side}, {4, 4, 4}, !perspective,
+                                            perspective ? 30.0 : 5.0);
+            const CameraFrame frame(camera, 32, 32);
+            for (SplatCompositing c :
+                 {SplatCompositing::kPerSplat, SplatCompositing::kSheetBuffer}) {
+                SCOPED_TRACE(::testing::Message()
+                             << (perspective ? "perspective" : "orthographic") << " from "
+                             << (side > 0 ? "above" : "below") << " " << mode_name(c));
+                SplatInputs in;
+                in.points = box.points();
+                in.scalar = scalar;
+                in.spacing = 0.5;
+                in.tf = &tf;
+                in.footprint = &footprint;
+                in.camera = &frame;
+                in.compositing = c;
+                SplatStats stats;
+                const Vec3f centre = render_splats(in, &stats).at(16, 16);
+                EXPECT_EQ(stats.sheet_axis, c == SplatCompositing::kSheetBuffer ? 2 : -1);
+                // Measured: the near colour 1.00000, the far one 2e-12 to 4e-11 (reversed sheets
+                // would give the far colour on top). Bounds 0.999 and 1e-9.
+                const float near = side > 0 ? centre.r : centre.b;
+                const float far = side > 0 ? centre.b : centre.r;
+                std::printf("[ %s from %s, %s ] near %.5f far %.2e\n",
+                            perspective ? "perspective" : "orthographic",
+                            side > 0 ? "above" : "below", mode_name(c), near, far);
+                EXPECT_GT(near, 0.999f);
+                EXPECT_LT(far, 1e-9f);
+            }
+        }
+    }
+}
+
 // A smooth field on a 64^3-cell lattice (65^3 points) against the exact integral of the same
 // lattice's linear tets (the reference ray caster), both kernels, both compositings.
 TEST(SplatCompositing, SmoothField64AgainstTheExactIntegral) {
