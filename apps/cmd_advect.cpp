@@ -2,6 +2,7 @@
 // the mesh by its vector field, one PNG per frame (flowtex/, docs/flowtex.md).
 #include <apps/cli_common.h>
 #include <apps/commands.h>
+#include <io/read_surface.h>
 #include <io/write_image.h>
 
 #include <cstdio>
@@ -18,6 +19,7 @@ struct AdvectArgs {
     std::string mesh;
     std::string vectors;
     std::vector<double> slice;
+    std::string sheet;
     std::string frames;
     int steps = 100;
     double dt = 0;
@@ -52,6 +54,11 @@ int run_advect(const AdvectArgs& args) {
         options.slice_point = Vec3(args.slice[0], args.slice[1], args.slice[2]);
         options.slice_normal = Vec3(args.slice[3], args.slice[4], args.slice[5]);
     }
+    if (!args.sheet.empty()) {
+        auto surface = read_surface(args.sheet);
+        if (!surface.ok()) return report_error(surface.error());
+        options.sheet = std::move(surface).value();
+    }
     options.steps = args.steps;
     options.dt = args.dt;
     options.sheet_resolution = args.resolution;
@@ -82,6 +89,7 @@ int run_advect(const AdvectArgs& args) {
     auto velocity = load_velocity(*domain, args.vectors, args.unsteady);
     if (!velocity.ok()) return report_error(velocity.error());
 
+    const std::string where = args.sheet.empty() ? args.mesh : args.sheet;
     const auto report =
         advect_frames(domain->mesh(), *domain->adjacency, *velocity, options,
                       [&](int frame, const Image& picture) -> Status {
@@ -91,7 +99,7 @@ int run_advect(const AdvectArgs& args) {
                       });
     if (!report.ok()) {
         Error error = report.error();
-        if (error.where.empty()) error.where = args.mesh;
+        if (error.where.empty()) error.where = where;
         return report_error(error);
     }
     std::printf("sheet: %zu points, %zu triangles; mean in-plane speed %.4g, dt %.4g%s\n",
@@ -115,6 +123,10 @@ std::function<int()> add_advect_command(CLI::App& app) {
                     "the bounds' thinnest axis)")
         ->expected(6)
         ->delimiter(',');
+    cmd->add_option("--sheet", args->sheet,
+                    "Instead of a slice: a planar 2D mesh of triangles or quads (.obj, .vtk, "
+                    ".vtp, .ply, .stl, .off) in the mesh's space")
+        ->excludes("--slice");
     cmd->add_option("--frames", args->frames, "Folder for frame_NNNN.png (created)")->required();
     cmd->add_option("--steps", args->steps, "Frames after the first (default 100)")
         ->check(CLI::Range(0, 100000));

@@ -42,8 +42,21 @@ Result<AdvectFramesReport> advect_frames(
         normal = Vec3(0, 1, 0);
     }
     const MeshFlow flow(mesh, adjacency, velocity);
-    TR_TRY(Sheet sheet,
-           slice_sheet(flow.locator(), bounds, point, normal, options.sheet_resolution));
+    Sheet sheet;
+    if (options.sheet) {
+        TR_TRY(sheet, sheet_from_triangles(options.sheet->points, options.sheet->triangles));
+        CellId hint = kNoCell;
+        const bool any_inside =
+            std::any_of(sheet.points.begin(), sheet.points.end(),
+                        [&](const Vec3& p) { return flow.locator().locate(p, hint).has_value(); });
+        if (!any_inside) {
+            return make_error(ErrorCode::kInvalidArgument,
+                              "the sheet lies outside the mesh: none of its " +
+                                  std::to_string(sheet.points.size()) + " points is inside");
+        }
+    } else {
+        TR_TRY(sheet, slice_sheet(flow.locator(), bounds, point, normal, options.sheet_resolution));
+    }
 
     AdvectFramesReport report;
     report.sheet_points = sheet.points.size();

@@ -6,6 +6,7 @@
 #include <core/result.h>
 #include <flowvol/velocity_field.h>
 #include <mesh/face_adjacency.h>
+#include <mesh/surface_mesh.h>
 #include <mesh/tet_mesh.h>
 
 #include <flowtex/advection.h>
@@ -21,7 +22,9 @@ struct AdvectFramesOptions {
     std::optional<Vec3> slice_point;
     std::optional<Vec3> slice_normal;
     int sheet_resolution = 256;  // grid squares along the sheet's longer side
-    int steps = 100;             // frames after frame 0
+    // Instead of a slice: a planar triangle mesh (a 2D mesh from a file) in the mesh's space.
+    std::optional<SurfaceMesh> sheet;
+    int steps = 100;  // frames after frame 0
     // Flow time per frame; 0: steady, the mean in-plane speed over the sheet carries the
     // texture 1/200 of the sheet's longer side per frame; unsteady, the velocity's time span
     // over `steps`.
@@ -45,11 +48,11 @@ struct AdvectFramesReport {
     double advect_ms = 0, raster_ms = 0;  // summed over the frames
 };
 
-// Slices the mesh, advects a noise texture over the slice `steps` frames and hands each frame's
-// picture (frame 0 first) to on_frame, which may fail (a write) and stop the run. Zero velocity
-// everywhere gives still frames (dt 1, no re-injection). Errors: the slice's (misses the mesh, bad
-// normal), bad options, on_frame's. Cost: per frame one RK4 step per sheet point and layer, and a
-// raster.
+// Slices the mesh (or takes options.sheet), advects a noise texture over the slice `steps` frames
+// and hands each frame's picture (frame 0 first) to on_frame, which may fail (a write) and stop the
+// run. Zero velocity everywhere gives still frames (dt 1, no re-injection). Errors: the slice's
+// (misses the mesh, bad normal), bad options, on_frame's. Cost: per frame one RK4 step per sheet
+// point and layer, and a raster.
 Result<AdvectFramesReport> advect_frames(
     const TetMesh& mesh, const FaceAdjacency& adjacency, const VelocityField& velocity,
     const AdvectFramesOptions& options,

@@ -139,7 +139,131 @@ Result<Sheet> slice_sheet(const PointLocator& locator, const Bounds3& mesh_bound
     return sheet;
 }
 
+Result<Sheet> sheet_from_triangles(const std::vector<Vec3>& points,
+                                   const std::vector<std::array<std::uint32_t, 3>>& triangles) {
+    if (triangles.empty() || points.empty()) {
+        return make_error(ErrorCode::kInvalidMesh, "the sheet has no triangles");
+    }
+    Bounds3 bounds;
+    for (const Vec3& p : points) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+            return make_error(ErrorCode::kInvalidMesh, "the sheet has a non-finite point");
+        }
+        bounds.extend(p);
+    }
+    Vec3 area_normal(0.0);
+    for (const auto& t : triangles) {
+        if (t[0] >= points.size() || t[1] >= points.size() || t[2] >= points.size()) {
+            return make_error(ErrorCode::kInvalidMesh, "a sheet triangle indexes past the points");
+        }
+        area_normal += glm::cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]);
+    }
+    const double diagonal = bounds.diagonal();
+    const double length = glm::length(area_normal);
+    if (!(length > 1e-12 * diagonal * diagonal)) {
+        return make_error(ErrorCode::kInvalidMesh, "the sheet has zero area");
+    }
+    const Vec3 n = area_normal / length;
+    const Vec3 o = points[triangles[0][0]];
+    double farthest = 0;
+    for (const Vec3& p : points) farthest = std::max(farthest, std::abs(glm::dot(p - o, n)));
+    if (farthest > 1e-6 * diagonal) {
+        std::ostringstream message;
+        message << "the sheet is not planar: a point lies " << farthest
+                << " from the plane of its triangles (tolerance 1e-6 of the diagonal " << diagonal
+                << ")";
+        return make_error(ErrorCode::kInvalidMesh, message.str());
+    }
+    const Vec3 a = glm::abs(n);
+    const Vec3 least = a.x <= a.y && a.x <= a.z ? Vec3(1, 0, 0)
+                       : a.y <= a.z             ? Vec3(0, 1, 0)
+                                                : Vec3(0, 0, 1);
+    Sheet sheet;
+    sheet.normal = n;
+    sheet.axis_u = glm::normalize(glm::cross(n, least));
+    sheet.axis_v = glm::cross(n, sheet.axis_u);
+    // Points projected onto the plane exactly (within the tolerance above).
+    sheet.points.reserve(points.size());
+    glm::dvec2 lo(1e300), hi(-1e300);
+    for (const Vec3& p : points) {
+        const Vec3 q = p - glm::dot(p - o, n) * n;
+        sheet.points.push_back(q);
+        const glm::dvec2 st(glm::dot(q - o, sheet.axis_u), glm::dot(q - o, sheet.axis_v));
+        lo = glm::min(lo, st);
+        hi = glm::max(hi, st);
+    }
+    sheet.triangles = triangles;
+    // Buckets: about one triangle per square.
+    const double extent = std::max(hi.x - lo.x, hi.y - lo.y);
+    const int side =
+        std::clamp(static_cast<int>(std::sqrt(static_cast<double>(triangles.size()))), 1, 4096);
+    sheet.spacing = extent / side;
+    sheet.nu = std::max(1, static_cast<int>(std::ceil((hi.x - lo.x) / sheet.spacing)));
+    sheet.nv = std::max(1, static_cast<int>(std::ceil((hi.y - lo.y) / sheet.spacing)));
+    sheet.origin = o + lo.x * sheet.axis_u + lo.y * sheet.axis_v;
+    const auto cells_of = [&](const std::array<std::uint32_t, 3>& t) {
+        glm::dvec2 tlo(1e300), thi(-1e300);
+        for (const std::uint32_t k : t) {
+            const glm::dvec2 st = sheet.plane_coordinates(sheet.points[k]) / sheet.spacing;
+            tlo = glm::min(tlo, st);
+            thi = glm::max(thi, st);
+        }
+        return std::array<int, 4>{std::clamp(static_cast<int>(std::floor(tlo.x)), 0, sheet.nu - 1),
+                                  std::clamp(static_cast<int>(std::floor(tlo.y)), 0, sheet.nv - 1),
+                                  std::clamp(static_cast<int>(std::floor(thi.x)), 0, sheet.nu - 1),
+                                  std::clamp(static_cast<int>(std::floor(thi.y)), 0, sheet.nv - 1)};
+    };
+    const std::size_t num_cells = static_cast<std::size_t>(sheet.nu) * sheet.nv;
+    sheet.bucket_start.assign(num_cells + 1, 0);
+    for (const auto& t : triangles) {
+        const auto c = cells_of(t);
+        for (int j = c[1]; j <= c[3]; ++j)
+            for (int i = c[0]; i <= c[2]; ++i) ++sheet.bucket_start[j * sheet.nu + i + 1];
+    }
+    for (std::size_t k = 0; k < num_cells; ++k) sheet.bucket_start[k + 1] += sheet.bucket_start[k];
+    sheet.bucket_triangles.resize(sheet.bucket_start.back());
+    std::vector<std::uint32_t> fill(sheet.bucket_start.begin(), sheet.bucket_start.end() - 1);
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        const auto c = cells_of(triangles[t]);
+        for (int j = c[1]; j <= c[3]; ++j)
+            for (int i = c[0]; i <= c[2]; ++i)
+                sheet.bucket_triangles[fill[j * sheet.nu + i]++] = static_cast<std::uint32_t>(t);
+    }
+    return sheet;
+}
+
+namespace {
+
+std::optional<SheetLocation> locate_in_buckets(const Sheet& sheet, const glm::dvec2& st) {
+    const double x = st.x / sheet.spacing, y = st.y / sheet.spacing;
+    constexpr double kSlack = 1e-9;
+    if (!(x >= -kSlack && y >= -kSlack && x <= sheet.nu + kSlack && y <= sheet.nv + kSlack)) {
+        return std::nullopt;
+    }
+    const int i = std::clamp(static_cast<int>(std::floor(x)), 0, sheet.nu - 1);
+    const int j = std::clamp(static_cast<int>(std::floor(y)), 0, sheet.nv - 1);
+    const std::size_t cell = static_cast<std::size_t>(j) * sheet.nu + i;
+    for (std::uint32_t k = sheet.bucket_start[cell]; k < sheet.bucket_start[cell + 1]; ++k) {
+        const auto& t = sheet.triangles[sheet.bucket_triangles[k]];
+        const glm::dvec2 a = sheet.plane_coordinates(sheet.points[t[0]]);
+        const glm::dvec2 b = sheet.plane_coordinates(sheet.points[t[1]]);
+        const glm::dvec2 c = sheet.plane_coordinates(sheet.points[t[2]]);
+        const double area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+        if (area == 0) continue;
+        const double wb = ((st.x - a.x) * (c.y - a.y) - (c.x - a.x) * (st.y - a.y)) / area;
+        const double wc = ((b.x - a.x) * (st.y - a.y) - (st.x - a.x) * (b.y - a.y)) / area;
+        const double wa = 1.0 - wb - wc;
+        if (wa >= -kSlack && wb >= -kSlack && wc >= -kSlack) {
+            return SheetLocation{t, {wa, wb, wc}};
+        }
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
 std::optional<SheetLocation> locate_on_sheet(const Sheet& sheet, const glm::dvec2& st) {
+    if (sheet.grid_point.empty()) return locate_in_buckets(sheet, st);
     const double x = st.x / sheet.spacing, y = st.y / sheet.spacing;
     constexpr double kSlack = 1e-9;
     if (!(x >= -kSlack && y >= -kSlack && x <= sheet.nu + kSlack && y <= sheet.nv + kSlack)) {

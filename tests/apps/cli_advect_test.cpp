@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -84,6 +85,43 @@ TEST(CliAdvect, WritesMovingFramesAndStillFramesForZeroVelocity) {
     ASSERT_EQ(count_files(still), 4);
     EXPECT_TRUE(bytes(still + "/frame_0000.png") == bytes(still + "/frame_0003.png"))
         << "zero velocity: frames differ";
+}
+
+TEST(CliAdvect, ASheetOfQuadsFromAFile) {
+    // A 4 x 4 quad mesh at z = 1.5 across the rotation's axis, as .obj.
+    const std::string dir = make_temp_dir();
+    std::string obj;
+    for (int j = 0; j <= 4; ++j)
+        for (int i = 0; i <= 4; ++i)
+            obj += "v " + std::to_string(0.5 + 0.75 * i) + " " + std::to_string(0.5 + 0.75 * j) +
+                   " 1.5\n";
+    for (int j = 0; j < 4; ++j) {
+        for (int i = 0; i < 4; ++i) {
+            const int a = 1 + j * 5 + i;  // .obj counts from 1
+            obj += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " +
+                   std::to_string(a + 6) + " " + std::to_string(a + 5) + "\n";
+        }
+    }
+    std::ofstream(dir + "/sheet.obj") << obj;
+    const std::string mesh = shell_quote(grid_file(dir, true));
+    const std::string frames = dir + "/frames";
+    const auto run =
+        run_cli("advect " + mesh + " --vectors v --sheet " + shell_quote(dir + "/sheet.obj") +
+                " --steps 3 --size 48x48 --frames " + shell_quote(frames));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.out.find("sheet: 25 points, 32 triangles"), std::string::npos) << run.out;
+    EXPECT_EQ(count_files(frames), 4);
+    EXPECT_TRUE(bytes(frames + "/frame_0000.png") != bytes(frames + "/frame_0003.png"));
+    // Not both a sheet and a slice; a sheet file that is not there.
+    EXPECT_EQ(run_cli("advect " + mesh + " --vectors v --sheet " + shell_quote(dir + "/sheet.obj") +
+                      " --slice 2,2,2,0,0,1 --frames " + shell_quote(dir + "/f2"))
+                  .exit_code,
+              2);
+    const auto missing =
+        run_cli("advect " + mesh + " --vectors v --sheet " + shell_quote(dir + "/none.obj") +
+                " --frames " + shell_quote(dir + "/f3"));
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
 }
 
 TEST(CliAdvectBadInput, OneLineErrorsAndNoFrames) {
