@@ -34,6 +34,18 @@ struct RenderArgs {
     std::string colormap = "viridis";
     std::string write_scene_path;
     std::vector<std::string> volumes;  // quick mode: more volumes, MESH:ARRAY each
+    std::vector<double> range;         // lo, hi
+    std::string look = "fitted";
+    std::optional<double> range_percent;
+    std::optional<double> opacity;
+    std::vector<std::string> opacity_curve;  // t:a each
+    std::optional<double> unit_distance;
+    std::vector<double> background;  // r, g, b
+    int time_step = 0;
+    double azimuth = 0, elevation = 0, zoom = 1;
+    std::vector<double> camera_position, camera_focal_point, camera_view_up;
+    std::optional<double> camera_view_angle;
+    bool fit_bounds = false;
 };
 
 bool is_scene_file(const std::string& path) {
@@ -42,7 +54,11 @@ bool is_scene_file(const std::string& path) {
 
 // The quick-look scene of the mesh at `args.input` (loaded through the pipeline, which keeps it).
 Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
-    QuickSceneOptions options;
+    if (args.look != "fitted" && args.look != "classic") {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "--look takes fitted or classic, not '" + args.look + "'");
+    }
+    QuickSceneOptions options = args.look == "classic" ? classic_quick_look() : QuickSceneOptions{};
     options.scalar = args.scalar;
     if (args.component != "magnitude") {
         try {
@@ -59,8 +75,62 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
     }
     options.view = args.view;
     options.colormap = args.colormap;
+    if (!args.range.empty()) options.range = std::array<double, 2>{args.range[0], args.range[1]};
+    if (args.range_percent) options.range_percent = *args.range_percent;
+    if (args.opacity) {
+        options.max_opacity = *args.opacity;
+        if (!options.opacity_curve.empty())
+            options.opacity_curve = {{0.0, 0.0}, {1.0, *args.opacity}};
+    }
+    if (!args.opacity_curve.empty()) options.opacity_curve.clear();
+    for (const std::string& point : args.opacity_curve) {
+        const auto colon = point.find(':');
+        try {
+            if (colon == std::string::npos) throw std::invalid_argument(point);
+            std::size_t used_t = 0, used_a = 0;
+            const double t = std::stod(point.substr(0, colon), &used_t);
+            const double a = std::stod(point.substr(colon + 1), &used_a);
+            if (used_t != colon || used_a != point.size() - colon - 1) {
+                throw std::invalid_argument(point);
+            }
+            options.opacity_curve.push_back({t, a});
+        } catch (const std::exception&) {
+            return make_error(ErrorCode::kInvalidArgument,
+                              "--opacity-curve takes t:a points (t in [0, 1] across the range), "
+                              "not '" +
+                                  point + "'");
+        }
+    }
+    if (args.unit_distance) options.unit_distance = *args.unit_distance;
+    if (!args.background.empty()) {
+        options.background = Vec3(args.background[0], args.background[1], args.background[2]);
+    }
+    options.time_step = args.time_step;
+    options.azimuth = args.azimuth, options.elevation = args.elevation, options.zoom = args.zoom;
+    if (args.fit_bounds) options.fit_extent = false;
+    if (!args.camera_position.empty() || !args.camera_focal_point.empty()) {
+        if (args.camera_position.empty() || args.camera_focal_point.empty()) {
+            return make_error(ErrorCode::kInvalidArgument,
+                              "--camera-position and --camera-focal-point go together");
+        }
+        Camera camera;
+        camera.position =
+            Vec3(args.camera_position[0], args.camera_position[1], args.camera_position[2]);
+        camera.focal_point = Vec3(args.camera_focal_point[0], args.camera_focal_point[1],
+                                  args.camera_focal_point[2]);
+        if (!args.camera_view_up.empty()) {
+            camera.view_up =
+                Vec3(args.camera_view_up[0], args.camera_view_up[1], args.camera_view_up[2]);
+        } else {
+            camera.view_up = Vec3(0, 0, 1);
+        }
+        if (args.camera_view_angle) camera.view_angle = *args.camera_view_angle;
+        TR_TRY_STATUS(check_camera(camera));
+        options.camera = camera;
+    }
     SceneVolume volume;
     volume.mesh = std::filesystem::absolute(args.input);
+    volume.time_step = args.time_step;
     TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, pipeline.mesh(volume));
     // More volumes in the same space: MESH:ARRAY each (the array after the last colon).
     std::vector<std::shared_ptr<const LoadedMesh>> others;
@@ -73,12 +143,15 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
         }
         SceneVolume other;
         other.mesh = std::filesystem::absolute(spec.substr(0, colon));
+        other.time_step = args.time_step;
         TR_TRY(std::shared_ptr<const LoadedMesh> mesh, pipeline.mesh(other));
         more.push_back({other.mesh, &mesh->tets, spec.substr(colon + 1), -1, ""});
         others.push_back(std::move(mesh));
     }
-    auto scene = make_quick_scene(volume.mesh, loaded->tets, options, more);
+    std::vector<std::string> notes;
+    auto scene = make_quick_scene(volume.mesh, loaded->tets, options, more, &notes);
     if (!scene.ok()) return with_where(scene.error(), args.input);
+    print_notes(notes);
     return scene;
 }
 
@@ -174,6 +247,61 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--view", args->view, "Quick mode: iso (default), +x, -x, +y, -y, +z, -z");
     cmd->add_option("--colormap", args->colormap,
                     "Quick mode: viridis (default), coolwarm, inferno, gray");
+    cmd->add_option(
+        "--look", args->look,
+        "Quick mode: fitted (default: robust range, every value visible, the object "
+        "framed) or classic (tetrender's look before 2026-11, for comparable pictures)");
+    cmd->add_option("--range", args->range,
+                    "Quick mode: the scalar range under the colour map and opacity, lo,hi "
+                    "(default: the 1st to 99th percentile of the point values)")
+        ->expected(2)
+        ->delimiter(',');
+    cmd->add_option("--range-percentile", args->range_percent,
+                    "Quick mode: the range from the P-th to the (100-P)-th percentile (default 1; "
+                    "0: the whole range)")
+        ->check(CLI::Range(0.0, 49.0));
+    cmd->add_option("--opacity", args->opacity,
+                    "Quick mode: the opacity at the range's top (default 0.5), a fifth of it at "
+                    "the bottom")
+        ->check(CLI::Range(0.001, 0.999));
+    cmd->add_option("--opacity-curve", args->opacity_curve,
+                    "Quick mode: opacity points t:a,... with t in [0, 1] across the range")
+        ->delimiter(',');
+    cmd->add_option("--unit-distance", args->unit_distance,
+                    "Quick mode: the thickness a slab of the stated opacity has (default: chosen "
+                    "so that a typical ray through the object reaches opacity 0.8)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--background", args->background, "Quick mode: background r,g,b in [0, 1]")
+        ->expected(3)
+        ->delimiter(',')
+        ->check(CLI::Range(0.0, 1.0));
+    cmd->add_option("--time-step", args->time_step, "Quick mode: the time step to read (default 0)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--azimuth", args->azimuth,
+                    "Quick mode: turn the view about the up axis, degrees (ParaView's Azimuth)")
+        ->check(CLI::Range(-360.0, 360.0));
+    cmd->add_option("--elevation", args->elevation,
+                    "Quick mode: raise the view towards the up axis, degrees (ParaView's "
+                    "Elevation)")
+        ->check(CLI::Range(-89.0, 89.0));
+    cmd->add_option("--zoom", args->zoom, "Quick mode: magnify by this factor (VTK's Zoom)")
+        ->check(CLI::Range(0.01, 100.0));
+    cmd->add_flag("--fit-bounds", args->fit_bounds,
+                  "Quick mode: frame the bounds' sphere instead of the object's projected extent");
+    cmd->add_option("--camera-position", args->camera_position,
+                    "Quick mode: the camera as ParaView gives it: position x,y,z (with "
+                    "--camera-focal-point, --camera-view-up, --camera-view-angle)")
+        ->expected(3)
+        ->delimiter(',');
+    cmd->add_option("--camera-focal-point", args->camera_focal_point, "Quick mode: x,y,z")
+        ->expected(3)
+        ->delimiter(',');
+    cmd->add_option("--camera-view-up", args->camera_view_up, "Quick mode: x,y,z (default +z)")
+        ->expected(3)
+        ->delimiter(',');
+    cmd->add_option("--camera-view-angle", args->camera_view_angle,
+                    "Quick mode: vertical view angle, degrees (default 30)")
+        ->check(CLI::Range(0.1, 179.0));
     cmd->add_option("--write-scene", args->write_scene_path,
                     "Quick mode: save the scene used, to edit and re-render");
     cmd->add_option("--volume", args->volumes,

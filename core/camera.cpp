@@ -1,5 +1,6 @@
 #include <core/camera.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -34,6 +35,37 @@ Vec3 CameraFrame::project(const Vec3& world) const {
     const double x = (sx / (half_height_ * aspect_) + 1.0) * 0.5 * width_;
     const double y = (1.0 - sy / half_height_) * 0.5 * height_;
     return {x, y, depth};
+}
+
+Status check_camera(const Camera& c) {
+    const auto finite = [](const Vec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
+    if (!finite(c.position) || !finite(c.focal_point) || !finite(c.view_up) ||
+        !std::isfinite(c.view_angle) || !std::isfinite(c.parallel_scale)) {
+        return make_error(ErrorCode::kInvalidArgument, "the camera has a value that is not finite");
+    }
+    // Scaled by the largest coordinate, so that cameras far out (1e308) neither overflow nor
+    // read as degenerate.
+    const double scale =
+        std::max({glm::length(c.position / 2.0), glm::length(c.focal_point / 2.0), 1e-300});
+    const Vec3 forward = c.focal_point / scale - c.position / scale;
+    if (!(glm::length(forward) > 1e-12)) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "position equals focal_point: no view direction");
+    }
+    const double up_length = glm::length(c.view_up);
+    if (!(up_length > 0.0)) return make_error(ErrorCode::kInvalidArgument, "view_up is zero");
+    if (glm::length(glm::cross(glm::normalize(forward), c.view_up / up_length)) < 1e-9) {
+        return make_error(ErrorCode::kInvalidArgument, "view_up is parallel to the view direction");
+    }
+    if (!(c.view_angle > 0 && c.view_angle < 180)) {
+        return make_error(ErrorCode::kInvalidArgument, "view_angle must be in (0, 180) degrees");
+    }
+    if (!(c.parallel_scale > 0)) {
+        return make_error(ErrorCode::kInvalidArgument, "parallel_scale must be positive");
+    }
+    return Status{};
 }
 
 Camera framing_camera(const Bounds3& b, const Vec3& from, double view_angle) {

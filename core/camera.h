@@ -6,6 +6,7 @@
 // [i, i + 1) x [j, j + 1) and its ray passes through (i + 0.5, j + 0.5).
 
 #include <core/math.h>
+#include <core/result.h>
 
 #include <cstdint>
 
@@ -55,6 +56,11 @@ class CameraFrame {
     double half_height_;  // perspective: tan(angle / 2); orthographic: parallel_scale
     double aspect_;
 };
+
+// Whether `camera` can make rays: every number finite, the eye away from the focal point (by
+// more than 1e-12 of their size), view_up not zero nor parallel to the view direction, the view
+// angle in (0, 180), the parallel scale positive. Error kInvalidArgument saying what is wrong.
+Status check_camera(const Camera& camera);
 
 // A perspective camera (view_angle degrees) looking at the centre of `bounds` from direction
 // `from` (the eye lies at centre + k * from), far enough that the bounding sphere fills the

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <pipeline/quick_look.h>
 #include <pipeline/quick_scene.h>
 #include <utility>
 
@@ -40,32 +41,101 @@ Result<Vec3> view_direction(const std::string& name) {
 
 namespace {
 
-// One volume's array range under a colour map, the opacity ramp of the options.
+// The opacity points of the options over [lo, hi] (a ramp, or the curve given).
+Result<std::vector<OpacityPoint>> quick_opacity(const QuickSceneOptions& options, double lo,
+                                                double hi) {
+    std::vector<OpacityPoint> points;
+    if (options.opacity_curve.empty()) {
+        if (!(options.max_opacity > 0.0 && options.max_opacity < 1.0)) {
+            return make_error(ErrorCode::kInvalidArgument, "the opacity must lie in (0, 1), not " +
+                                                               std::to_string(options.max_opacity));
+        }
+        const double floor = std::clamp(options.opacity_floor, 0.0, 1.0);
+        points = {{lo, floor * options.max_opacity}, {hi, options.max_opacity}};
+        return points;
+    }
+    double last_t = -1.0;
+    for (const auto& [t, a] : options.opacity_curve) {
+        if (!(t >= 0.0 && t <= 1.0) || !(a >= 0.0 && a < 1.0) || t < last_t) {
+            return make_error(
+                ErrorCode::kInvalidArgument,
+                "the opacity curve takes t:a points with t in [0, 1], non-decreasing, "
+                "and a in [0, 1)");
+        }
+        last_t = t;
+        points.push_back({lo + (hi - lo) * t, a});
+    }
+    return points;
+}
+
+// One volume: its array's range under a colour map, the opacity of the options, the unit
+// distance given or chosen from the mesh.
 Result<SceneVolume> quick_volume(const std::filesystem::path& mesh_path, const TetMesh& mesh,
                                  const std::string& scalar, int component,
                                  const std::string& colormap, const QuickSceneOptions& options,
-                                 double unit_distance) {
+                                 std::vector<std::string>* notes) {
     SceneVolume volume;
     volume.mesh = mesh_path;
     volume.scalar = scalar;
     volume.component = component;
+    volume.time_step = options.time_step;
     TR_TRY(const std::vector<float> values, point_scalar(mesh, scalar, component));
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (float v : values) {
-        if (!std::isfinite(v)) continue;
-        lo = std::min<double>(lo, v);
-        hi = std::max<double>(hi, v);
-    }
-    if (!(hi >= lo)) {
+    auto whole = robust_range(values, 0.0);
+    if (!whole.ok()) {
         return make_error(ErrorCode::kInvalidMesh, "array '" + scalar + "' has no finite value",
                           mesh_path.string());
     }
+    std::array<double, 2> range = (*whole);
+    if (options.range) {
+        range = *options.range;
+        if (!std::isfinite(range[0]) || !std::isfinite(range[1]) || !(range[1] > range[0])) {
+            return make_error(ErrorCode::kInvalidArgument,
+                              "the range must be two finite values lo < hi");
+        }
+        if (notes && (range[0] > (*whole)[1] || range[1] < (*whole)[0])) {
+            notes->push_back("the range given lies outside the values of '" + scalar + "' (" +
+                             std::to_string((*whole)[0]) + " to " + std::to_string((*whole)[1]) +
+                             ")");
+        }
+    } else if (options.range_percent > 0.0) {
+        TR_TRY(range, robust_range(values, options.range_percent));
+        if (!(range[1] > range[0])) range = *whole;  // most values equal: the whole range
+    }
+    if (!(range[1] > range[0]) && notes) {
+        notes->push_back("array '" + scalar + "' is constant (" + std::to_string(range[0]) +
+                         "): the picture shows where the mesh is, in one colour");
+    }
+    const double lo = range[0], hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
+    TR_TRY(const std::vector<OpacityPoint> opacity, quick_opacity(options, lo, hi));
+    TR_TRY(const TransferFunction colors, make_quick_transfer_function(colormap, lo, hi, 0.5, 1.0));
+    // The unit distance: given, or the one that brings the mean chord to options.ray_opacity.
+    double unit = options.unit_distance;
+    if (!(unit > 0.0) && options.unit_distance_of_diagonal > 0.0) {
+        unit = options.unit_distance_of_diagonal * mesh.bounds().diagonal();
+    }
+    if (!(unit > 0.0)) {
+        TR_TRY(const TransferFunction shape,
+               TransferFunction::create(colors.color_points(), opacity, 1.0));
+        const double target = std::clamp(options.ray_opacity, 0.01, 0.99);
+        unit = unit_distance_for_opacity(
+            values, [&](double s) { return shape.opacity(s); }, mean_chord_length(mesh), target);
+        if (!(unit > 0.0)) unit = std::max(mesh.bounds().diagonal(), 1e-12) / 20.0;
+    }
     TR_TRY(volume.transfer_function,
-           make_quick_transfer_function(colormap, lo, hi, options.max_opacity, unit_distance));
+           TransferFunction::create(colors.color_points(), opacity, unit));
     return volume;
 }
 
 }  // namespace
+
+QuickSceneOptions classic_quick_look() {
+    QuickSceneOptions options;
+    options.range_percent = 0.0;
+    options.opacity_curve = {{0.0, 0.0}, {1.0, 0.3}};
+    options.unit_distance_of_diagonal = 1.0 / 20.0;
+    options.fit_extent = false;
+    return options;
+}
 
 Result<Scene> make_quick_scene(const std::filesystem::path& mesh_path, const TetMesh& mesh,
                                const QuickSceneOptions& options) {
@@ -74,21 +144,34 @@ Result<Scene> make_quick_scene(const std::filesystem::path& mesh_path, const Tet
 
 Result<Scene> make_quick_scene(const std::filesystem::path& mesh_path, const TetMesh& mesh,
                                const QuickSceneOptions& options,
-                               const std::vector<QuickVolume>& more) {
+                               const std::vector<QuickVolume>& more,
+                               std::vector<std::string>* notes) {
     Scene scene;
     scene.width = options.width;
     scene.height = options.height;
+    scene.background = options.background;
     TR_TRY(const Vec3 from, view_direction(options.view));
-    Bounds3 bounds = mesh.bounds();
-    for (const QuickVolume& v : more) {
-        const Bounds3 b = v.mesh->bounds();
-        if (!b.empty()) bounds.extend(b.lo), bounds.extend(b.hi);
+    std::vector<const TetMesh*> meshes = {&mesh};
+    for (const QuickVolume& v : more) meshes.push_back(v.mesh);
+    if (options.camera) {
+        scene.camera = *options.camera;
+    } else if (options.fit_extent) {
+        CameraFit fit;
+        fit.from = from;
+        fit.width = options.width, fit.height = options.height;
+        fit.view_angle = options.view_angle;
+        fit.azimuth = options.azimuth, fit.elevation = options.elevation, fit.zoom = options.zoom;
+        scene.camera = fitting_camera(meshes, fit);
+    } else {
+        Bounds3 bounds;
+        for (const TetMesh* m : meshes) {
+            const Bounds3 b = m->bounds();
+            if (!b.empty()) bounds.extend(b.lo), bounds.extend(b.hi);
+        }
+        scene.camera = framing_camera(bounds, from, options.view_angle);
     }
-    scene.camera = framing_camera(bounds, from, options.view_angle);
-    const double unit =
-        options.unit_distance > 0 ? options.unit_distance : bounds.diagonal() / 20.0;
     TR_TRY(SceneVolume first, quick_volume(mesh_path, mesh, options.scalar, options.component,
-                                           options.colormap, options, unit));
+                                           options.colormap, options, notes));
     scene.volumes.push_back(std::move(first));
     std::vector<std::string> used = {options.colormap};
     for (std::size_t i = 0; i < more.size(); ++i) {
@@ -104,8 +187,10 @@ Result<Scene> make_quick_scene(const std::filesystem::path& mesh_path, const Tet
             if (colormap.empty()) colormap = used[(i + 1) % used.size()];
         }
         used.push_back(colormap);
+        QuickSceneOptions own = options;
+        own.range.reset();  // each volume over its own range
         auto volume =
-            quick_volume(v.mesh_path, *v.mesh, v.scalar, v.component, colormap, options, unit);
+            quick_volume(v.mesh_path, *v.mesh, v.scalar, v.component, colormap, own, notes);
         if (!volume.ok()) {
             Error e = volume.error();
             e.message = "volume " + std::to_string(i + 1) + ": " + e.message;

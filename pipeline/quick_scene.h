@@ -7,7 +7,9 @@
 #include <core/result.h>
 #include <project/scene.h>
 
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <pipeline/loaded_mesh.h>
 #include <string>
 #include <vector>
@@ -25,18 +27,46 @@ std::vector<std::string> view_names();
 struct QuickSceneOptions {
     std::string scalar;  // required: a point or cell array of the mesh
     int component = -1;  // -1: magnitude
+    int time_step = 0;   // recorded in the scene (the caller loads the mesh of that step)
     int width = 800, height = 600;
     std::string view = "iso";
     std::string colormap = "viridis";
-    double max_opacity = 0.3;  // the ramp's top, at the range's high end
-    double unit_distance = 0;  // 0: the bounds' diagonal / 20
+    // The scalar range under the colour map and the opacity: `range` when given, else the
+    // [range_percent, 100 - range_percent] percentiles of the finite point values (values
+    // beyond take the end colours), 0: the whole range.
+    std::optional<std::array<double, 2>> range;
+    double range_percent = 1.0;
+    // Opacity (of a slab one unit distance thick): a ramp from opacity_floor * max_opacity at
+    // the range's low end to max_opacity at its high end, so that low values stay visible,
+    // or, when given, `opacity_curve`: (t, a) points, t in [0, 1] across the range.
+    double max_opacity = 0.5;
+    double opacity_floor = 0.2;
+    std::vector<std::array<double, 2>> opacity_curve;
+    // 0: chosen so that a ray of the mesh's mean chord length (quick_look.h), through values
+    // distributed as the mesh's points, reaches `ray_opacity` (or, when
+    // unit_distance_of_diagonal > 0, that fraction of the bounds' diagonal).
+    double unit_distance = 0;
+    double unit_distance_of_diagonal = 0;
+    double ray_opacity = 0.8;
+    // The camera: `camera` when given (used as is), else one looking from `view` turned by
+    // azimuth and elevation (degrees), fitting the object's projected extent (`fit_extent`;
+    // false: the bounds' sphere, as before 2026-11), narrowed by `zoom`.
+    std::optional<Camera> camera;
+    double azimuth = 0, elevation = 0, zoom = 1;
+    bool fit_extent = true;
     double view_angle = 30.0;
+    Vec3 background{0.0};
 };
 
-// The scene: `mesh_path` (named in the scene, for --write-scene) with the array's finite range
-// under the colour map and an opacity ramp 0 -> max_opacity, the camera framing the bounds.
+// The quick look of tetrender before 2026-11 (`--look classic`): the whole range, an opacity
+// ramp 0 -> 0.3, a unit distance of a twentieth of the bounds' diagonal, the bounds' sphere
+// framed. Pictures comparable with older ones; the realdata method tests keep to it.
+QuickSceneOptions classic_quick_look();
+
+// The scene: `mesh_path` (named in the scene, for --write-scene) with the array's range under the
+// colour map and the opacity, the camera and unit distance as the options say.
 // Errors: an unknown view or colour map, an unknown array (listing them), a component out of
-// range, an array with no finite value.
+// range, an array with no finite value, a bad range or opacity curve.
 Result<Scene> make_quick_scene(const std::filesystem::path& mesh_path, const TetMesh& mesh,
                                const QuickSceneOptions& options);
 
@@ -52,9 +82,12 @@ struct QuickVolume {
 // A scene of several volumes in one space (written with `volumes`): the first as above (its
 // scalar, component and colour map from `options`), each of `more` with its own array and
 // colour map over its own range, the camera framing the union of their bounds. Errors as
-// above, the message naming the volume's index when it is not the first.
+// above, the message naming the volume's index when it is not the first. The unit distance
+// chosen from the first volume holds for all. `notes`, when given, receives what the user should
+// know (an array that is constant, a range given outside the data's).
 Result<Scene> make_quick_scene(const std::filesystem::path& mesh_path, const TetMesh& mesh,
                                const QuickSceneOptions& options,
-                               const std::vector<QuickVolume>& more);
+                               const std::vector<QuickVolume>& more,
+                               std::vector<std::string>* notes = nullptr);
 
 }  // namespace tr

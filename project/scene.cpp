@@ -108,15 +108,15 @@ Camera camera(const json& j, const std::string& path) {
     if (j.contains("parallel_scale")) {
         c.parallel_scale = number(j["parallel_scale"], path + ".parallel_scale");
     }
-    const Vec3 forward = c.focal_point - c.position;
-    if (glm::length(forward) == 0) fail(path, "position equals focal_point: no view direction");
-    if (glm::length(glm::cross(glm::normalize(forward), c.view_up)) < 1e-9) {
-        fail(path + ".view_up", "zero or parallel to the view direction");
+    if (const Status ok = check_camera(c); !ok.ok()) {
+        // check_camera's messages start with the key at fault, when there is one.
+        const std::string& message = ok.error().message;
+        std::string where = path;
+        for (const char* key : {"view_up", "view_angle", "parallel_scale"}) {
+            if (message.rfind(key, 0) == 0) where = path + "." + key;
+        }
+        fail(where, message);
     }
-    if (!(c.view_angle > 0 && c.view_angle < 180)) {
-        fail(path + ".view_angle", "must be in (0, 180) degrees");
-    }
-    if (!(c.parallel_scale > 0)) fail(path + ".parallel_scale", "must be positive");
     return c;
 }
 
