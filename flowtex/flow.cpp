@@ -38,7 +38,7 @@ AnalyticFlow double_gyre(double amplitude, double epsilon, double omega) {
 }
 
 std::optional<Vec3> rk4_step(const Flow& flow, const Vec3& x, double time, double dt,
-                             const Vec3& normal, CellId& hint) {
+                             const Vec3& normal, CellId& hint, bool check_end) {
     auto tangent = [&](const Vec3& v) { return v - glm::dot(v, normal) * normal; };
     const auto k1 = flow.at(x, time, hint);
     if (!k1) return std::nullopt;
@@ -57,10 +57,12 @@ std::optional<Vec3> rk4_step(const Flow& flow, const Vec3& x, double time, doubl
     if (!std::isfinite(next.x) || !std::isfinite(next.y) || !std::isfinite(next.z)) {
         return std::nullopt;
     }
-    // The end point must be in the domain too (the next step starts there).
-    CellId end_hint = h;
-    if (!flow.at(next, time + dt, end_hint)) return std::nullopt;
-    hint = end_hint;
+    if (check_end) {
+        CellId end_hint = h;
+        if (!flow.at(next, time + dt, end_hint)) return std::nullopt;
+        h = end_hint;
+    }
+    hint = h;
     return next;
 }
 

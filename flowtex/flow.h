@@ -67,8 +67,9 @@ AnalyticFlow double_gyre(double amplitude = 0.1, double epsilon = 0.25,
 // One classical RK4 step of x' = P(v(x, t)) from `time` to time + dt (dt may be negative: a
 // backward trace), where P removes the component along `normal` (a unit vector, or zero for
 // none) so that a trace stays in the sheet's plane. Nothing when any stage leaves the flow's
-// domain. Cost: four velocity lookups.
+// domain, or, with `check_end`, when the end point does. Cost: four velocity lookups (five with
+// check_end).
 std::optional<Vec3> rk4_step(const Flow& flow, const Vec3& x, double time, double dt,
-                             const Vec3& normal, CellId& hint);
+                             const Vec3& normal, CellId& hint, bool check_end = true);
 
 }  // namespace tr

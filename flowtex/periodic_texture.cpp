@@ -72,18 +72,29 @@ PeriodicTexture PeriodicTexture::filtered_noise(int size, std::uint64_t seed, in
     return tex;
 }
 
+namespace {
+
+// floor(x) as an integer, without a libm call (x within +-9e18).
+inline std::int64_t floor_int(double x) {
+    const auto i = static_cast<std::int64_t>(x);
+    return i - (x < static_cast<double>(i) ? 1 : 0);
+}
+
+}  // namespace
+
 float PeriodicTexture::sample_level(double u, double v, int level) const {
     const int n = size_ >> level;
-    const std::vector<float>& t = levels_[static_cast<std::size_t>(level)];
-    // Texel centres at (i + 0.5) / n.
-    const double x = (u - std::floor(u)) * n - 0.5;
-    const double y = (v - std::floor(v)) * n - 0.5;
-    const double fx0 = std::floor(x), fy0 = std::floor(y);
-    const float fx = static_cast<float>(x - fx0), fy = static_cast<float>(y - fy0);
-    const int mask = n - 1;
-    const int i0 = static_cast<int>(fx0) & mask, j0 = static_cast<int>(fy0) & mask;
-    const int i1 = (i0 + 1) & mask, j1 = (j0 + 1) & mask;
-    const std::size_t r0 = static_cast<std::size_t>(j0) * n, r1 = static_cast<std::size_t>(j1) * n;
+    const float* t = levels_[static_cast<std::size_t>(level)].data();
+    // Texel centres at (i + 0.5) / n; wrapping is the mask on the integer part.
+    const double x = u * n - 0.5, y = v * n - 0.5;
+    const std::int64_t x0 = floor_int(x), y0 = floor_int(y);
+    const float fx = static_cast<float>(x - static_cast<double>(x0));
+    const float fy = static_cast<float>(y - static_cast<double>(y0));
+    const std::int64_t mask = n - 1;
+    const std::size_t i0 = static_cast<std::size_t>(x0 & mask);
+    const std::size_t j0 = static_cast<std::size_t>(y0 & mask);
+    const std::size_t i1 = static_cast<std::size_t>((x0 + 1) & mask);
+    const std::size_t r0 = j0 * n, r1 = static_cast<std::size_t>((y0 + 1) & mask) * n;
     const float top = t[r0 + i0] + fx * (t[r0 + i1] - t[r0 + i0]);
     const float bottom = t[r1 + i0] + fx * (t[r1 + i1] - t[r1 + i0]);
     return top + fy * (bottom - top);
