@@ -4,9 +4,11 @@
 # exact), and against VTK's CPU ray caster for image data (vtkFixedPointVolumeRayCastMapper,
 # through Debian's python3-vtk9 under xvfb-run, sample distance half the spacing), same grid and
 # camera, in one run. Prints each method's PSNR over the foreground against the exact picture,
-# its raster time (tetrender --stats raster_ms; VTK: the median of RUNS re-renders after +-0.5
-# degree turns, as ../shared/tools/vtk/render_vtk.py times them) and the wall time of the
-# command. docs/benchmarks.md keeps the results.
+# its raster time, wall and processor (all threads: what the wall time hides on a shared
+# machine) — tetrender's --stats raster_ms and raster_cpu_ms; VTK's the median of RUNS
+# re-renders after +-0.5 degree turns, as ../shared/tools/vtk/render_vtk.py times them, with
+# Python's process_time — and the wall time of each command. docs/benchmarks.md keeps the
+# results.
 #   bench/splat_vs_vtk.sh [BUILD_DIR] [WORK_DIR] [RUNS]
 set -euo pipefail
 build=${1:-build}
@@ -60,8 +62,8 @@ for name in splat-cubic splat-cubic-sheet splat-gaussian splat-gaussian-sheet; d
     "$tetrender" render "$work/$name.json" -o "$work/$name.pfm" --stats > "$work/$name.stats"
     end=$(date +%s.%N)
     t=$(python3 -c "print('%.2f' % ($end - $start))")
-    rasters+=("$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["raster_ms"])' \
-      "$work/$name.stats")")
+    rasters+=("$(python3 -c 'import json,sys; s = json.load(open(sys.argv[1]));
+print("%s/%s" % (s["raster_ms"], s["raster_cpu_ms"]))' "$work/$name.stats")")
     echo "run $run $name: wall $t s; $(cat "$work/$name.stats")"
   done
   rows+=("$name ${rasters[*]}")
@@ -111,14 +113,17 @@ w2i.ReadFrontBufferOff(); w2i.Update()
 im = w2i.GetOutput(); d = im.GetDimensions()
 pix = vtk_to_numpy(im.GetPointData().GetScalars()).reshape(d[1], d[0], 3)[::-1]
 np.save(work + "/vtk.npy", pix.astype(np.float32) / 255)
-times = []
+times, cpus = [], []
 for i in range(runs):
     cam.Azimuth(0.5 if i % 2 == 0 else -0.5)
     ren.ResetCameraClippingRange()
-    t0 = time.perf_counter(); rw.Render(); times.append(time.perf_counter() - t0)
+    t0, c0 = time.perf_counter(), time.process_time()
+    rw.Render()
+    times.append(time.perf_counter() - t0); cpus.append(time.process_time() - c0)
 print(json.dumps({"load_s": round(load, 3), "first_render_s": round(first, 3),
                   "rerender_s": [round(t, 3) for t in times],
                   "rerender_median_s": round(statistics.median(times), 3),
+                  "rerender_cpu_median_s": round(statistics.median(cpus), 3),
                   "threads": mapper.GetNumberOfThreads()}))
 EOF
 echo "vtkFixedPointVolumeRayCastMapper: $(cat "$work/vtk.json")"
@@ -139,14 +144,18 @@ def psnr(a, b):
     mse = np.mean((np.clip(a, 0, 1)[fg] - np.clip(b, 0, 1)[fg]) ** 2)
     return 10 * np.log10(1 / mse), float(np.abs(np.clip(a, 0, 1) - np.clip(b, 0, 1)).max())
 exact = pfm(work + "/exact.pfm")
-print("\n| picture | PSNR vs exact (dB) | largest difference | raster (ms), median of %d |" % runs)
-print("|---|---|---|---|")
+print("\n| picture | PSNR vs exact (dB) | largest difference | raster wall (ms) | raster CPU, all "
+      "threads (ms) |")
+print("|---|---|---|---|---|")
 for row in rows:
     name, *ms = row.split()
+    wall = statistics.median(float(x.split("/")[0]) for x in ms)
+    cpu = statistics.median(float(x.split("/")[1]) for x in ms)
     p, m = psnr(pfm(work + "/" + name + ".pfm"), exact)
-    print("| tetrender %s | %.2f | %.3f | %.0f |" % (name, p, m, statistics.median(map(float, ms))))
+    print("| tetrender %s | %.2f | %.3f | %.0f | %.0f |" % (name, p, m, wall, cpu))
 v = json.load(open(work + "/vtk.json"))
 p, m = psnr(np.load(work + "/vtk.npy"), exact)
-print("| vtkFixedPointVolumeRayCastMapper (8-bit) | %.2f | %.3f | %.0f |"
-      % (p, m, 1000 * v["rerender_median_s"]))
+print("| vtkFixedPointVolumeRayCastMapper (8-bit) | %.2f | %.3f | %.0f | %.0f |"
+      % (p, m, 1000 * v["rerender_median_s"], 1000 * v["rerender_cpu_median_s"]))
+print("(medians of %d; load average %s)" % (runs, open("/proc/loadavg").read().split()[0]))
 EOF

@@ -20,6 +20,8 @@ struct Splat {
     Vec3 color;          // the transfer function's colour at the point's value
     double kappa;        // its extinction
     double h;            // the kernel's scale: the spacing, or the point's radius
+    double sx, sy;       // the projected centre, pixel units
+    double depth;        // along the view (orthographic: the ray parameter of the centre)
     int x0, y0, x1, y1;  // pixels whose centres may lie in its footprint, inclusive
 };
 
@@ -97,6 +99,9 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
                     in.tf->color(in.scalar[i]),
                     kappa,
                     kernel_h,
+                    s.x,
+                    s.y,
+                    s.z,
                     static_cast<int>(std::floor(s.x - r_px - 0.5)),
                     static_cast<int>(std::floor(s.y - r_px - 0.5)),
                     static_cast<int>(std::ceil(s.x + r_px - 0.5)),
@@ -162,7 +167,7 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
         const int y0 = static_cast<int>(tile / tiles_x) * kTile;
         const int x1 = std::min(x0 + kTile, w) - 1, y1 = std::min(y0 + kTile, h) - 1;
         Ray rays[kTile * kTile];
-        for (int y = y0; y <= y1; ++y) {
+        for (int y = y0; !orthographic && y <= y1; ++y) {
             for (int x = x0; x <= x1; ++x)
                 rays[(y - y0) * kTile + (x - x0)] = camera.pixel_ray(x, y);
         }
@@ -194,17 +199,33 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
                 if (open && sheet[i] != current) flush();
                 current = sheet[i], open = true;
             }
+            // Orthographic: the distance to each pixel's ray is that on the image (rays are
+            // parallel), in lattice units; the centre's ray parameter is its depth.
+            const double to_kernel = orthographic ? 1.0 / (per_unit * s.h) : 0.0;
+            const double kappa_h = s.kappa * s.h, reach_sq = support_sq * s.h * s.h;
+            const Vec3f colour(s.color);
+            if (orthographic && !(s.depth > 0)) continue;
             for (int y = std::max(s.y0, y0); y <= std::min(s.y1, y1); ++y) {
+                const double dy = (y + 0.5 - s.sy) * to_kernel, dy_sq = dy * dy;
+                if (orthographic && !(dy_sq < support_sq)) continue;
                 for (int x = std::max(s.x0, x0); x <= std::min(s.x1, x1); ++x) {
-                    const Ray& ray = rays[(y - y0) * kTile + (x - x0)];
-                    const Vec3 v = s.center - ray.origin;
-                    const double t = glm::dot(v, ray.direction);
-                    const double rho_sq = glm::dot(v, v) - t * t;
-                    if (!(rho_sq < support_sq * s.h * s.h) || !(t > 0)) continue;
+                    double t, rho;  // the centre's ray parameter; rho / h
+                    if (orthographic) {
+                        const double dx = (x + 0.5 - s.sx) * to_kernel;
+                        const double q = dx * dx + dy_sq;
+                        if (!(q < support_sq)) continue;
+                        t = s.depth, rho = std::sqrt(q);
+                    } else {
+                        const Ray& ray = rays[(y - y0) * kTile + (x - x0)];
+                        const Vec3 v = s.center - ray.origin;
+                        t = glm::dot(v, ray.direction);
+                        const double rho_sq = glm::dot(v, v) - t * t;
+                        if (!(rho_sq < reach_sq) || !(t > 0)) continue;
+                        rho = std::sqrt(std::max(rho_sq, 0.0)) / s.h;
+                    }
                     const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
                     if (in.opaque_depth && !(t < (*in.opaque_depth)[pixel])) continue;
-                    const double tau =
-                        s.kappa * s.h * (*in.footprint)(std::sqrt(std::max(rho_sq, 0.0)) / s.h);
+                    const double tau = kappa_h * (*in.footprint)(rho);
                     ++count;
                     if (sheets) {
                         const int local = (y - y0) * kTile + (x - x0);
@@ -212,9 +233,11 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
                         sheet_color[local] += tau * s.color;
                         continue;
                     }
-                    const double alpha = -std::expm1(-tau);
+                    // 1 - exp rather than expm1: several times faster in glibc, and its absolute
+                    // error (1e-16) is far below the float composite's.
+                    const auto alpha = static_cast<float>(1.0 - std::exp(-tau));
                     Vec3f& dst = image.pixels[pixel];
-                    dst = Vec3f(s.color * alpha) + static_cast<float>(1.0 - alpha) * dst;
+                    dst = colour * alpha + (1.0f - alpha) * dst;
                 }
             }
         }
