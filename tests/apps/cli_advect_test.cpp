@@ -19,7 +19,8 @@ using testing::shell_quote;
 
 // A legacy ASCII grid of 4 x 4 x 4 hexahedra over [0, 4]^3 with a point scalar `s` and point
 // vectors `v`: zero, or a rotation about the axis x = y = 2.
-std::string grid_file(const std::string& dir, bool rotating) {
+std::string grid_file(const std::string& dir, bool rotating, int scale = 1,
+                      const std::string& name = "") {
     const int n = 5;
     std::string s = "# vtk DataFile Version 4.2\nadvect test\nASCII\nDATASET UNSTRUCTURED_GRID\n";
     s += "POINTS " + std::to_string(n * n * n) + " double\n";
@@ -44,9 +45,13 @@ std::string grid_file(const std::string& dir, bool rotating) {
     for (int k = 0; k < n; ++k)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i)
-                s += rotating ? std::to_string(2 - j) + " " + std::to_string(i - 2) + " 0\n"
+                s += rotating ? std::to_string(scale * (2 - j)) + " " +
+                                    std::to_string(scale * (i - 2)) + " 0\n"
                               : std::string("0 0 0\n");
-    const std::string path = dir + (rotating ? "/rotating.vtk" : "/still.vtk");
+    const std::string path = dir + "/" +
+                             (!name.empty() ? name
+                              : rotating    ? "rotating.vtk"
+                                            : "still.vtk");
     std::ofstream(path) << s;
     return path;
 }
@@ -122,6 +127,29 @@ TEST(CliAdvect, ASheetOfQuadsFromAFile) {
                 " --frames " + shell_quote(dir + "/f3"));
     EXPECT_EQ(missing.exit_code, 1);
     EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+}
+
+TEST(CliAdvect, UnsteadySeriesBothMethods) {
+    // A .pvd series: the rotation doubles its speed from t = 0 to t = 1.
+    const std::string dir = make_temp_dir();
+    grid_file(dir, true, 1, "s0.vtk");
+    grid_file(dir, true, 2, "s1.vtk");
+    std::ofstream(dir + "/flow.pvd")
+        << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+           "<Collection>\n<DataSet timestep=\"0\" part=\"0\" file=\"s0.vtk\"/>\n"
+           "<DataSet timestep=\"1\" part=\"0\" file=\"s1.vtk\"/>\n</Collection>\n</VTKFile>\n";
+    for (const char* method : {"backward", "forward"}) {
+        const std::string frames = dir + "/" + method;
+        const auto run = run_cli("advect " + shell_quote(dir + "/flow.pvd") +
+                                 " --vectors v --unsteady --slice 2,2,2,0,0,1 --steps 4 --size "
+                                 "32x32 --resolution 16 --method " +
+                                 method + " --frames " + shell_quote(frames));
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        // The default dt spans the series: (1 - 0) / 4.
+        EXPECT_NE(run.out.find("dt 0.25"), std::string::npos) << run.out;
+        EXPECT_EQ(count_files(frames), 5);
+        EXPECT_TRUE(bytes(frames + "/frame_0000.png") != bytes(frames + "/frame_0004.png"));
+    }
 }
 
 TEST(CliAdvectBadInput, OneLineErrorsAndNoFrames) {
