@@ -52,7 +52,7 @@ struct TexturedMeshView {
     std::span<const Vec3> positions;
     std::span<const glm::dvec2> texcoords;
     std::span<const std::array<std::uint32_t, 3>> triangles;
-    std::span<const std::uint8_t> alive;  // per point, 0: its triangles are skipped
+    std::span<const std::uint8_t> alive;  // per point, 0: its triangles are skipped; empty: all
     float weight = 1.0f;
 };
 
