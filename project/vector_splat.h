@@ -22,7 +22,8 @@
 // the transfer function's extinction at the point's scalar, h the spacing) and the colour of
 // the scalar: alpha = 1 - exp(-tau), colour c alpha. Points of zero extinction or zero
 // projected speed (no direction to show) are not drawn. Opaque geometry: a splat is drawn on a
-// pixel only where its centre lies in front of the pixel's surface.
+// pixel only where its centre lies in front of the pixel's surface. The renderer samples the
+// frame's texture once on a 513 x 129 grid over (u, v) and reads it bilinearly.
 
 #include <core/camera.h>
 #include <core/image.h>
