@@ -15,6 +15,13 @@ namespace {
 
 constexpr int kTile = 32;
 
+// floor / ceil of a pixel coordinate as an int, limited to +-1e9 (NaN to -1e9): a splat far off
+// the picture must not overflow the conversion.
+int pixel_floor(double v) {
+    return static_cast<int>(std::floor(v > -1e9 ? std::min(v, 1e9) : -1e9));
+}
+int pixel_ceil(double v) { return static_cast<int>(std::ceil(v > -1e9 ? std::min(v, 1e9) : -1e9)); }
+
 struct Splat {
     Vec3 center;
     Vec3 color;          // the transfer function's colour at the point's value
@@ -102,10 +109,10 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
                     s.x,
                     s.y,
                     s.z,
-                    static_cast<int>(std::floor(s.x - r_px - 0.5)),
-                    static_cast<int>(std::floor(s.y - r_px - 0.5)),
-                    static_cast<int>(std::ceil(s.x + r_px - 0.5)),
-                    static_cast<int>(std::ceil(s.y + r_px - 0.5))};
+                    pixel_floor(s.x - r_px - 0.5),
+                    pixel_floor(s.y - r_px - 0.5),
+                    pixel_ceil(s.x + r_px - 0.5),
+                    pixel_ceil(s.y + r_px - 0.5)};
         splat.x0 = std::max(splat.x0, 0), splat.y0 = std::max(splat.y0, 0);
         splat.x1 = std::min(splat.x1, w - 1), splat.y1 = std::min(splat.y1, h - 1);
         if (splat.x0 > splat.x1 || splat.y0 > splat.y1) continue;

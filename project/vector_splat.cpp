@@ -18,6 +18,13 @@ constexpr double kFront = 0.04;    // of its length: the soft front ahead of a s
 // of the width by default, spans 9 samples; the soft front 20).
 constexpr int kTableU = 512, kTableV = 128;
 
+// floor / ceil of a pixel coordinate as an int, limited to +-1e9 (NaN to -1e9): a splat far off
+// the picture must not overflow the conversion.
+int pixel_floor(double v) {
+    return static_cast<int>(std::floor(v > -1e9 ? std::min(v, 1e9) : -1e9));
+}
+int pixel_ceil(double v) { return static_cast<int>(std::ceil(v > -1e9 ? std::min(v, 1e9) : -1e9)); }
+
 struct Rect {
     Vec3 center;         // world
     Vec3 color;          // the transfer function's colour at the point's scalar
@@ -144,10 +151,10 @@ Image render_vector_splats(const VectorSplatInputs& in, VectorSplatStats* stats)
         r.half_width = in.half_width * in.spacing * scale;
         const double ex = std::abs(r.ax) * r.half_length + std::abs(r.ay) * r.half_width;
         const double ey = std::abs(r.ay) * r.half_length + std::abs(r.ax) * r.half_width;
-        r.x0 = std::max(static_cast<int>(std::floor(s.x - ex - 0.5)), 0);
-        r.y0 = std::max(static_cast<int>(std::floor(s.y - ey - 0.5)), 0);
-        r.x1 = std::min(static_cast<int>(std::ceil(s.x + ex - 0.5)), w - 1);
-        r.y1 = std::min(static_cast<int>(std::ceil(s.y + ey - 0.5)), h - 1);
+        r.x0 = std::max(pixel_floor(s.x - ex - 0.5), 0);
+        r.y0 = std::max(pixel_floor(s.y - ey - 0.5), 0);
+        r.x1 = std::min(pixel_ceil(s.x + ex - 0.5), w - 1);
+        r.y1 = std::min(pixel_ceil(s.y + ey - 0.5), h - 1);
         if (r.x0 > r.x1 || r.y0 > r.y1) continue;
         rects.push_back(r);
         depth.push_back(orthographic ? s.z : glm::length(p - camera.eye()));

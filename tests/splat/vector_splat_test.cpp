@@ -2,6 +2,7 @@
 // projected vector (its image moments' principal axis, against the direction got by projecting
 // two world points), brighter toward the motion, its head moving forward from frame to frame;
 // the cycle closes (frame k + N is frame k) and its frames differ.
+#include <project/splat_renderer.h>
 #include <project/vector_splat.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
 
@@ -197,6 +198,54 @@ TEST(VectorSplats, FrameKPlusNIsFrameK) {
             EXPECT_GT(change, 0.29);  // measured 0.385 (N = 4) and 0.394 (N = 8), a quarter below
         } else {
             EXPECT_EQ(change, 0.0);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace tr
+
+namespace tr {
+namespace {
+
+// Points far off the picture (coordinates of 1e15, beyond an int's range in pixels) leave it
+// untouched in both renderers, rather than overflowing their pixel bounds (the conversion
+// overflow is what the sanitizer build catches).
+TEST(VectorSplats, PointsFarOffThePictureLeaveItUntouched) {
+    const TransferFunction tf = single_colour();
+    const StreakTexture texture;
+    const SplatFootprint footprint(SplatKernel::kCrawfisMax);
+    const std::vector<Vec3> points{{1e15, 0, 0}, {0, -1e15, 0}, {-1e15, 1e15, 0}};
+    const std::vector<Vec3> vectors(3, Vec3(1, 0, 0));
+    const std::vector<float> scalar(3, 0.0f);
+    for (bool perspective : {false, true}) {
+        const CameraFrame frame(
+            camera_at({0, 0, 10}, {0, 0, 0}, !perspective, perspective ? 30.0 : 4.0), 32, 32);
+        VectorSplatInputs in;
+        in.points = points;
+        in.scalar = scalar;
+        in.vectors = vectors;
+        in.tf = &tf;
+        in.texture = &texture;
+        in.camera = &frame;
+        in.background = Vec3(0.25);
+        EXPECT_EQ(
+            compare_images(render_vector_splats(in), Image(32, 32, Vec3f(0.25f)), Vec3f(0.25f))
+                .max_difference,
+            0.0);
+        SplatInputs scalar_in;
+        scalar_in.points = points;
+        scalar_in.scalar = scalar;
+        scalar_in.tf = &tf;
+        scalar_in.footprint = &footprint;
+        scalar_in.camera = &frame;
+        scalar_in.background = Vec3(0.25);
+        for (SplatCompositing c : {SplatCompositing::kPerSplat, SplatCompositing::kSheetBuffer}) {
+            scalar_in.compositing = c;
+            EXPECT_EQ(
+                compare_images(render_splats(scalar_in), Image(32, 32, Vec3f(0.25f)), Vec3f(0.25f))
+                    .max_difference,
+                0.0);
         }
     }
 }
