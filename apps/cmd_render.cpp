@@ -4,12 +4,14 @@
 #include <apps/commands.h>
 #include <core/parallel.h>
 #include <io/write_image.h>
+#include <project/colormap_preset.h>
 #include <project/scene.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <pipeline/annotations.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
 
@@ -46,6 +48,11 @@ struct RenderArgs {
     std::vector<double> camera_position, camera_focal_point, camera_view_up;
     std::optional<double> camera_view_angle;
     bool fit_bounds = false;
+    // Annotations and colour maps.
+    std::string legend = "auto";  // auto: on in quick mode, off for scene files
+    bool bounding_box = false, axes = false;
+    std::string colormap_file;
+    std::string write_colormap;
 };
 
 bool is_scene_file(const std::string& path) {
@@ -75,6 +82,11 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
     }
     options.view = args.view;
     options.colormap = args.colormap;
+    if (!args.colormap_file.empty()) {
+        // --colormap names the preset in the file (the first when it is the default).
+        const std::string name = args.colormap == "viridis" ? "" : args.colormap;
+        TR_TRY(options.colormap_preset, read_colormap_preset(args.colormap_file, name));
+    }
     if (!args.range.empty()) options.range = std::array<double, 2>{args.range[0], args.range[1]};
     if (args.range_percent) options.range_percent = *args.range_percent;
     if (args.opacity) {
@@ -179,6 +191,16 @@ int run_render(const RenderArgs& args) {
     if (const Status ok = check_output_path(args.output, {".png", ".pfm"}); !ok.ok()) {
         return report_usage(ok.error());
     }
+    if (args.legend != "auto" && args.legend != "on" && args.legend != "off") {
+        std::fprintf(stderr, "tetrender: --legend takes on or off, not '%s'\n",
+                     args.legend.c_str());
+        return kExitUsage;
+    }
+    if (!args.write_colormap.empty()) {
+        if (const Status ok = check_output_path(args.write_colormap, {".json"}); !ok.ok()) {
+            return report_usage(ok.error());
+        }
+    }
     if (args.threads > 0) set_thread_count(args.threads);
 
     PipelineOptions pipeline_options;
@@ -189,6 +211,18 @@ int run_render(const RenderArgs& args) {
         auto read = read_scene(args.input);
         if (!read.ok()) return report_error(read.error());
         scene = std::move(read).value();
+        if (!args.colormap_file.empty()) {
+            const auto preset = read_colormap_preset(args.colormap_file, "");
+            if (!preset.ok()) return report_error(preset.error());
+            for (SceneVolume& v : scene.volumes) {
+                const TransferFunction& tf = v.transfer_function;
+                auto recoloured = preset_transfer_function(*preset, tf.color_points().front().s,
+                                                           tf.color_points().back().s,
+                                                           tf.opacity_points(), tf.unit_distance());
+                if (!recoloured.ok()) return report_error(recoloured.error());
+                v.transfer_function = std::move(recoloured).value();
+            }
+        }
     } else {
         auto quick = quick_scene(pipeline, args);
         if (!quick.ok()) return report_error(quick.error());
@@ -205,9 +239,28 @@ int run_render(const RenderArgs& args) {
         const Status written = write_scene(scene, args.write_scene_path);
         if (!written.ok()) return report_error(written.error());
     }
+    if (!args.write_colormap.empty()) {
+        const Status written = write_colormap_presets(
+            {preset_from_transfer_function(scene.volumes[0].transfer_function,
+                                           scene.volumes[0].scalar)},
+            args.write_colormap);
+        if (!written.ok()) return report_error(written.error());
+    }
     auto result = pipeline.render(scene, options);
     if (!result.ok()) return report_error(result.error());
     print_notes(result->notes);
+    // The classic look had no legend: its pictures stay comparable.
+    const bool legend =
+        args.legend == "on" || (args.legend == "auto" && !scene_mode && args.look != "classic");
+    if (legend || args.bounding_box || args.axes) {
+        AnnotationOptions annotations;
+        annotations.legend = legend;
+        annotations.bounding_box = args.bounding_box;
+        annotations.axes = args.axes;
+        const Status drawn = annotate(result->image, scene, pipeline, annotations);
+        // A picture too small for its legend is still a picture: say so and go on.
+        if (!drawn.ok()) print_notes({"no annotations: " + drawn.error().message});
+    }
     const Status written = write_image(result->image, args.output);
     if (!written.ok()) return report_error(written.error());
     if (args.stats) print_stats(result->stats);
@@ -246,7 +299,8 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--size", args->size, "Quick mode: image size WxH (default 800x600)");
     cmd->add_option("--view", args->view, "Quick mode: iso (default), +x, -x, +y, -y, +z, -z");
     cmd->add_option("--colormap", args->colormap,
-                    "Quick mode: viridis (default), coolwarm, inferno, gray");
+                    "Quick mode: viridis (default), coolwarm, inferno, gray, or a ParaView preset "
+                    "name (Cool to Warm, Jet, Rainbow Uniform, Black-Body Radiation, ...)");
     cmd->add_option(
         "--look", args->look,
         "Quick mode: fitted (default: robust range, every value visible, the object "
@@ -302,6 +356,18 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--camera-view-angle", args->camera_view_angle,
                     "Quick mode: vertical view angle, degrees (default 30)")
         ->check(CLI::Range(0.1, 179.0));
+    cmd->add_option("--legend", args->legend,
+                    "on or off: a colour bar with the array's name, range and ticks (default: on "
+                    "in quick mode, off for scene files, which are compared pixel for pixel, and "
+                    "for --look classic)");
+    cmd->add_flag("--bounding-box", args->bounding_box, "Draw the meshes' bounding box");
+    cmd->add_flag("--axes", args->axes, "Draw an x, y, z axes triad in a corner");
+    cmd->add_option(
+        "--colormap-file", args->colormap_file,
+        "A ParaView colour-map preset file (JSON); --colormap names the preset in it "
+        "(default: its first); for a scene file, recolours every volume over its range");
+    cmd->add_option("--write-colormap", args->write_colormap,
+                    "Write volume 0's transfer function as a ParaView preset (.json)");
     cmd->add_option("--write-scene", args->write_scene_path,
                     "Quick mode: save the scene used, to edit and re-render");
     cmd->add_option("--volume", args->volumes,

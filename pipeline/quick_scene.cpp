@@ -107,7 +107,11 @@ Result<SceneVolume> quick_volume(const std::filesystem::path& mesh_path, const T
     }
     const double lo = range[0], hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
     TR_TRY(const std::vector<OpacityPoint> opacity, quick_opacity(options, lo, hi));
-    TR_TRY(const TransferFunction colors, make_quick_transfer_function(colormap, lo, hi, 0.5, 1.0));
+    TR_TRY(TransferFunction colors, make_quick_transfer_function(colormap, lo, hi, 0.5, 1.0));
+    if (options.colormap_preset) {
+        TR_TRY(colors,
+               preset_transfer_function(*options.colormap_preset, lo, hi, {{lo, 0.5}}, 1.0));
+    }
     // The unit distance: given, or the one that brings the mean chord to options.ray_opacity.
     double unit = options.unit_distance;
     if (!(unit > 0.0) && options.unit_distance_of_diagonal > 0.0) {
@@ -188,7 +192,8 @@ Result<Scene> make_quick_scene(const std::filesystem::path& mesh_path, const Tet
         }
         used.push_back(colormap);
         QuickSceneOptions own = options;
-        own.range.reset();  // each volume over its own range
+        own.range.reset();  // each volume over its own range, in its own colours
+        own.colormap_preset.reset();
         auto volume =
             quick_volume(v.mesh_path, *v.mesh, v.scalar, v.component, colormap, own, notes);
         if (!volume.ok()) {

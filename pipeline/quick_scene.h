@@ -5,6 +5,7 @@
 
 #include <core/camera.h>
 #include <core/result.h>
+#include <project/colormap_preset.h>
 #include <project/scene.h>
 
 #include <array>
@@ -31,6 +32,9 @@ struct QuickSceneOptions {
     int width = 800, height = 600;
     std::string view = "iso";
     std::string colormap = "viridis";
+    // When given, the colours of the first volume come from this preset (a ParaView colour map
+    // file), spread over the range, instead of `colormap`.
+    std::optional<ColormapPreset> colormap_preset;
     // The scalar range under the colour map and the opacity: `range` when given, else the
     // [range_percent, 100 - range_percent] percentiles of the finite point values (values
     // beyond take the end colours), 0: the whole range.

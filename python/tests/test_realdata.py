@@ -48,7 +48,7 @@ def test_read_agrees_with_meshio(data_dir, name):
 def test_meshio_arrays_render_the_cli_picture_of_the_file(data_dir, cli, output_dir, name, scalar):
     out = output_dir / "cli.pfm"
     result = run_cli(cli, "render", str(data_dir / name), "--scalar", scalar, "--size", "120x90",
-                     "-o", str(out))
+                     "--legend", "off", "-o", str(out))
     assert result.returncode == 0, result.stderr
     mesh = tetrender.Mesh.from_meshio(meshio.read(data_dir / name))
     picture = tetrender.render(tetrender.Scene.quick(mesh, scalar, width=120, height=90),
