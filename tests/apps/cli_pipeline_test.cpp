@@ -176,5 +176,104 @@ TEST(CliPipelineBadInput, OutputPathsAreCheckedBeforeTheWork) {
     std::filesystem::remove_all(dir);
 }
 
+// Quick mode's pictures: the mesh `block` at 160 x 120 with `options`, as floats.
+Image quick_picture(const std::string& dir, const std::string& mesh, const std::string& options,
+                    const std::string& name) {
+    const std::string out = dir + "/" + name + ".pfm";
+    auto run = run_cli("render " + shell_quote(mesh) + " --scalar t --size 160x120 " + options +
+                       " -o " + shell_quote(out));
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return testing::read_pfm(out);
+}
+
+TEST(CliQuickLook, TheLegendOnlyChangesASideOfThePicture) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = write_block(dir);
+    const Image with = quick_picture(dir, mesh, "", "with");
+    const Image without = quick_picture(dir, mesh, "--legend off", "without");
+    ASSERT_EQ(with.pixels.size(), without.pixels.size());
+    std::size_t changed = 0;
+    for (int y = 0; y < with.height; ++y) {
+        for (int x = 0; x < with.width; ++x) {
+            if (with.at(x, y) == without.at(x, y)) continue;
+            ++changed;
+            // The bar, its ticks and its title keep to a side: the outer 40% of either edge.
+            EXPECT_TRUE(x < 0.4 * with.width || x > 0.6 * with.width) << x << "," << y;
+        }
+    }
+    EXPECT_GT(changed, 1000u);  // measured 1374 pixels of bar, ticks and text
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CliQuickLook, AWrittenColormapAndAGivenCameraGiveThePictureBack) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = write_block(dir);
+    const std::string scene = dir + "/quick.json";
+    const std::string colormap = dir + "/map.json";
+    const Image first =
+        quick_picture(dir, mesh,
+                      "--legend off --colormap coolwarm --write-colormap " + shell_quote(colormap) +
+                          " --write-scene " + shell_quote(scene),
+                      "first");
+    std::ifstream in(scene);
+    const nlohmann::json camera = nlohmann::json::parse(in)["camera"];
+    const auto triple = [&](const char* key) {
+        return std::to_string(camera[key][0].get<double>()) + "," +
+               std::to_string(camera[key][1].get<double>()) + "," +
+               std::to_string(camera[key][2].get<double>());
+    };
+    // %f-style text keeps 6 decimals: the camera comes back to about 1e-6 of its size.
+    const Image again =
+        quick_picture(dir, mesh,
+                      "--legend off --colormap-file " + shell_quote(colormap) +
+                          " --camera-position " + triple("position") + " --camera-focal-point " +
+                          triple("focal_point") + " --camera-view-up " + triple("view_up"),
+                      "again");
+    // Measured: foreground PSNR 131.3 dB, largest difference below 1e-5 (the camera's rounding).
+    EXPECT_TRUE(testing::images_match(again, first, Vec3f(0.0f), {120.0, 1e-5}, "colormap_camera"));
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CliQuickLook, AzimuthTurnsTheViewAboutTheUpAxis) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = write_block(dir);
+    const Image turned = quick_picture(dir, mesh, "--legend off --view +x --azimuth 90", "turned");
+    const Image along_y = quick_picture(dir, mesh, "--legend off --view +y", "along_y");
+    // Measured: 187 dB, equal to rounding (cos 90 degrees is 6e-17, not 0).
+    EXPECT_TRUE(testing::images_match(turned, along_y, Vec3f(0.0f), {150.0, 1e-6}, "azimuth"));
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CliQuickLook, BadOptionsAreOneLineErrors) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = shell_quote(write_block(dir));
+    const std::string out = " -o " + shell_quote(dir + "/x.png");
+    expect_one_line_error(run_cli("render " + mesh + " --scalar t --range 2,1" + out), 1,
+                          "lo < hi");
+    expect_one_line_error(run_cli("render " + mesh + " --scalar t --look bold" + out), 1,
+                          "--look takes fitted or classic");
+    expect_one_line_error(run_cli("render " + mesh + " --scalar t --opacity-curve 0:0.1,x" + out),
+                          1, "--opacity-curve takes t:a points");
+    expect_one_line_error(
+        run_cli("render " + mesh + " --scalar t --opacity-curve 0.5:0.1,0.2:0.3" + out), 1,
+        "non-decreasing");
+    expect_one_line_error(run_cli("render " + mesh + " --scalar t --camera-position 1,2,3" + out),
+                          1, "go together");
+    expect_one_line_error(run_cli("render " + mesh +
+                                  " --scalar t --camera-position 0,0,5 --camera-focal-point "
+                                  "0,0,0 --camera-view-up 0,0,1" +
+                                  out),
+                          1, "view_up is parallel");
+    expect_one_line_error(run_cli("render " + mesh +
+                                  " --scalar t --camera-position 1e308,1e308,1e308 "
+                                  "--camera-focal-point 0,0,0" +
+                                  out),
+                          1, "");
+    expect_one_line_error(run_cli("render " + mesh + " --scalar t --legend maybe" + out), 2,
+                          "--legend takes on or off");
+    EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace tr
