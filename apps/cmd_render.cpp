@@ -7,13 +7,16 @@
 #include <project/colormap_preset.h>
 #include <project/scene.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <pipeline/annotations.h>
+#include <pipeline/movie.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
+#include <unistd.h>
 
 namespace tr::apps {
 namespace {
@@ -43,7 +46,7 @@ struct RenderArgs {
     std::vector<std::string> opacity_curve;  // t:a each
     std::optional<double> unit_distance;
     std::vector<double> background;  // r, g, b
-    int time_step = 0;
+    std::string time_step = "0";     // a step, or "all" (frames)
     double azimuth = 0, elevation = 0, zoom = 1;
     std::vector<double> camera_position, camera_focal_point, camera_view_up;
     std::optional<double> camera_view_angle;
@@ -53,7 +56,26 @@ struct RenderArgs {
     bool bounding_box = false, axes = false;
     std::string colormap_file;
     std::string write_colormap;
+    // Animations.
+    double orbit = 0;      // degrees in all
+    int frame_count = 36;  // orbit frames
+    std::string frames_dir;
+    std::string movie;
+    double fps = 24;
 };
+
+// The time step of quick mode's mesh: a number, or 0 for "all" (the frames start there).
+Result<int> first_time_step(const std::string& text) {
+    if (text == "all") return 0;
+    try {
+        std::size_t used = 0;
+        const int step = std::stoi(text, &used);
+        if (used == text.size() && step >= 0) return step;
+    } catch (const std::exception&) {
+    }
+    return make_error(ErrorCode::kInvalidArgument,
+                      "--time-step takes a step (0, 1, ...) or all, not '" + text + "'");
+}
 
 bool is_scene_file(const std::string& path) {
     return path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
@@ -117,7 +139,7 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
     if (!args.background.empty()) {
         options.background = Vec3(args.background[0], args.background[1], args.background[2]);
     }
-    options.time_step = args.time_step;
+    TR_TRY(options.time_step, first_time_step(args.time_step));
     options.azimuth = args.azimuth, options.elevation = args.elevation, options.zoom = args.zoom;
     if (args.fit_bounds) options.fit_extent = false;
     if (!args.camera_position.empty() || !args.camera_focal_point.empty()) {
@@ -142,7 +164,7 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
     }
     SceneVolume volume;
     volume.mesh = std::filesystem::absolute(args.input);
-    volume.time_step = args.time_step;
+    volume.time_step = options.time_step;
     TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, pipeline.mesh(volume));
     // More volumes in the same space: MESH:ARRAY each (the array after the last colon).
     std::vector<std::shared_ptr<const LoadedMesh>> others;
@@ -155,7 +177,7 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
         }
         SceneVolume other;
         other.mesh = std::filesystem::absolute(spec.substr(0, colon));
-        other.time_step = args.time_step;
+        other.time_step = options.time_step;
         TR_TRY(std::shared_ptr<const LoadedMesh> mesh, pipeline.mesh(other));
         more.push_back({other.mesh, &mesh->tets, spec.substr(colon + 1), -1, ""});
         others.push_back(std::move(mesh));
@@ -165,6 +187,79 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
     if (!scene.ok()) return with_where(scene.error(), args.input);
     print_notes(notes);
     return scene;
+}
+
+// The frames of an orbit (--orbit) or of every time step (--time-step all), each written as
+// frame_NNNN.png into --frames DIR (or a temporary folder) and, with --movie, encoded.
+template <class Picture>
+int render_frames(const RenderArgs& args, const Scene& scene, const Picture& picture,
+                  Pipeline& pipeline) {
+    std::filesystem::path dir = args.frames_dir;
+    std::filesystem::path temporary;
+    if (dir.empty()) {
+        temporary = std::filesystem::temp_directory_path() /
+                    ("tetrender_frames_" + std::to_string(::getpid()));
+        std::filesystem::create_directories(temporary);
+        dir = temporary;
+    }
+    const auto cleanup = [&] {
+        std::error_code ignored;
+        if (!temporary.empty()) std::filesystem::remove_all(temporary, ignored);
+    };
+    const bool every_step = args.time_step == "all";
+    const int orbit_frames = args.orbit != 0 ? args.frame_count : 1;
+    const std::vector<Camera> cameras = orbit_cameras(scene.camera, args.orbit, orbit_frames);
+    int written = 0;
+    for (int step = 0;; ++step) {
+        Scene view = scene;
+        if (every_step) {
+            for (SceneVolume& v : view.volumes) v.time_step = step;
+            // The series ends where its first volume has no step: a step out of range.
+            if (step > 0) {
+                auto mesh = pipeline.mesh(view.volumes[0]);
+                if (!mesh.ok() && mesh.error().code == ErrorCode::kInvalidArgument) break;
+            }
+        }
+        for (std::size_t k = 0; k < cameras.size(); ++k) {
+            // An orbit over a series turns once over all its frames: one camera a step.
+            if (every_step && args.orbit != 0 &&
+                k != static_cast<std::size_t>(step) % cameras.size()) {
+                continue;
+            }
+            view.camera = cameras[k];
+            auto result = picture(view);
+            if (!result.ok()) {
+                cleanup();
+                return report_error(result.error());
+            }
+            const Status ok = write_image(result->image, frame_path(dir, written).string());
+            if (!ok.ok()) {
+                cleanup();
+                return report_error(ok.error());
+            }
+            ++written;
+            if (!args.output.empty() && written == 1) {
+                const Status first = write_image(result->image, args.output);
+                if (!first.ok()) {
+                    cleanup();
+                    return report_error(first.error());
+                }
+            }
+            if (::isatty(STDERR_FILENO)) std::fprintf(stderr, "\rframe %d", written);
+        }
+        if (!every_step) break;
+    }
+    if (::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
+    if (!args.movie.empty()) {
+        const Status encoded = encode_movie(dir, args.fps, args.movie);
+        cleanup();
+        if (!encoded.ok()) return report_error(encoded.error());
+    }
+    cleanup();
+    std::fprintf(stderr, "tetrender: %d frames%s%s\n", written,
+                 args.frames_dir.empty() ? "" : (" in " + args.frames_dir).c_str(),
+                 args.movie.empty() ? "" : (", movie " + args.movie).c_str());
+    return kExitOk;
 }
 
 int run_render(const RenderArgs& args) {
@@ -188,8 +283,45 @@ int run_render(const RenderArgs& args) {
                      "scene .json)\n");
         return kExitUsage;
     }
-    if (const Status ok = check_output_path(args.output, {".png", ".pfm"}); !ok.ok()) {
-        return report_usage(ok.error());
+    const bool animated = args.orbit != 0 || args.time_step == "all" || !args.frames_dir.empty() ||
+                          !args.movie.empty();
+    if (args.output.empty() && !animated) {
+        std::fprintf(stderr, "tetrender: render needs -o FILE (or --frames DIR / --movie FILE)\n");
+        return kExitUsage;
+    }
+    if (!args.output.empty()) {
+        if (const Status ok = check_output_path(args.output, {".png", ".pfm"}); !ok.ok()) {
+            return report_usage(ok.error());
+        }
+    }
+    if (animated) {
+        if (args.frames_dir.empty() && args.movie.empty()) {
+            std::fprintf(stderr,
+                         "tetrender: --orbit and --time-step all write --frames DIR or "
+                         "--movie FILE\n");
+            return kExitUsage;
+        }
+        if (!args.movie.empty()) {
+            if (const Status ok = check_output_path(args.movie, {".mp4", ".webm", ".gif"});
+                !ok.ok()) {
+                return report_usage(ok.error());
+            }
+            if (!movie_encoder_available()) {
+                std::fprintf(stderr,
+                             "tetrender: --movie needs the ffmpeg program (Debian: "
+                             "apt-get install ffmpeg); --frames DIR writes the frames\n");
+                return kExitError;
+            }
+        }
+        if (!args.frames_dir.empty()) {
+            std::error_code made;
+            std::filesystem::create_directories(args.frames_dir, made);
+            if (made || !std::filesystem::is_directory(args.frames_dir)) {
+                std::fprintf(stderr, "tetrender: %s: cannot make the frames folder\n",
+                             args.frames_dir.c_str());
+                return kExitError;
+            }
+        }
     }
     if (args.legend != "auto" && args.legend != "on" && args.legend != "off") {
         std::fprintf(stderr, "tetrender: --legend takes on or off, not '%s'\n",
@@ -246,21 +378,27 @@ int run_render(const RenderArgs& args) {
             args.write_colormap);
         if (!written.ok()) return report_error(written.error());
     }
-    auto result = pipeline.render(scene, options);
-    if (!result.ok()) return report_error(result.error());
-    print_notes(result->notes);
-    // The classic look had no legend: its pictures stay comparable.
+    // One picture of `view`: rendered, notes printed, annotated.
     const bool legend =
         args.legend == "on" || (args.legend == "auto" && !scene_mode && args.look != "classic");
-    if (legend || args.bounding_box || args.axes) {
-        AnnotationOptions annotations;
-        annotations.legend = legend;
-        annotations.bounding_box = args.bounding_box;
-        annotations.axes = args.axes;
-        const Status drawn = annotate(result->image, scene, pipeline, annotations);
-        // A picture too small for its legend is still a picture: say so and go on.
-        if (!drawn.ok()) print_notes({"no annotations: " + drawn.error().message});
-    }
+    const auto picture = [&](const Scene& view) -> Result<RenderResult> {
+        TR_TRY(RenderResult result, pipeline.render(view, options));
+        print_notes(result.notes);
+        // The classic look had no legend: its pictures stay comparable.
+        if (legend || args.bounding_box || args.axes) {
+            AnnotationOptions annotations;
+            annotations.legend = legend;
+            annotations.bounding_box = args.bounding_box;
+            annotations.axes = args.axes;
+            const Status drawn = annotate(result.image, view, pipeline, annotations);
+            // A picture too small for its legend is still a picture: say so and go on.
+            if (!drawn.ok()) print_notes({"no annotations: " + drawn.error().message});
+        }
+        return result;
+    };
+    if (animated) return render_frames(args, scene, picture, pipeline);
+    auto result = picture(scene);
+    if (!result.ok()) return report_error(result.error());
     const Status written = write_image(result->image, args.output);
     if (!written.ok()) return report_error(written.error());
     if (args.stats) print_stats(result->stats);
@@ -274,8 +412,8 @@ std::function<int()> add_render_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "render", "Render a scene file, or a mesh with --scalar for a quick look, to PNG/PFM");
     cmd->add_option("input", args->input, "Scene file (.json) or mesh file")->required();
-    cmd->add_option("-o,--output", args->output, "Output image (.png, or .pfm for floats)")
-        ->required();
+    cmd->add_option("-o,--output", args->output,
+                    "Output image (.png, or .pfm for floats); with frames, the first frame");
     cmd->add_option("--method", args->method,
                     "Rendering method, overriding the scene's: projected-tetrahedra (default; "
                     "several volumes by the exact segment merge), pbvr-image, pbvr-object "
@@ -329,8 +467,21 @@ std::function<int()> add_render_command(CLI::App& app) {
         ->expected(3)
         ->delimiter(',')
         ->check(CLI::Range(0.0, 1.0));
-    cmd->add_option("--time-step", args->time_step, "Quick mode: the time step to read (default 0)")
-        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--time-step", args->time_step,
+                    "Quick mode: the time step to read (default 0); all (scene files too): a "
+                    "frame of each step (--frames, --movie), with step 0's range and camera");
+    cmd->add_option("--orbit", args->orbit,
+                    "Frames turning this many degrees about the camera's up axis (--frame-count, "
+                    "--frames, --movie)")
+        ->check(CLI::Range(-3600.0, 3600.0));
+    cmd->add_option("--frame-count", args->frame_count, "Frames of an orbit (default 36)")
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--frames", args->frames_dir,
+                    "Write the frames as DIR/frame_0000.png, ... (made if missing)");
+    cmd->add_option("--movie", args->movie,
+                    "Encode the frames into a movie (.mp4, .webm, .gif) with the ffmpeg program");
+    cmd->add_option("--fps", args->fps, "Movie frames per second (default 24)")
+        ->check(CLI::Range(0.1, 1000.0));
     cmd->add_option("--azimuth", args->azimuth,
                     "Quick mode: turn the view about the up axis, degrees (ParaView's Azimuth)")
         ->check(CLI::Range(-360.0, 360.0));

@@ -136,7 +136,8 @@ Camera fitting_camera(std::span<const TetMesh* const> meshes, const CameraFit& f
     camera.view_angle = zoom > 0.0 ? view_angle / zoom : view_angle;
     camera.position = target + dir * distance;
     camera.focal_point = target;
-    camera.view_up = up;
+    // The up axis itself, not its part across the view: orbits about it turn without rolling.
+    camera.view_up = axis;
     camera.parallel_scale = std::max(0.5 * (y_hi - y_lo), 0.5 * (x_hi - x_lo) / aspect) / free /
                             (zoom > 0.0 ? zoom : 1.0);
     if (!(camera.parallel_scale > 0.0)) camera.parallel_scale = 0.5 * diagonal;

@@ -35,7 +35,8 @@ double unit_distance_for_opacity(std::span<const float> values, const Opacity& o
 // up axis and then `elevation` degrees towards it, as ParaView's Azimuth and Elevation do) at
 // the centre of the points' projected extent, as close as lets every point lie inside a
 // width x height picture with `margin` (a fraction of each side) left free; view_up +z unless
-// the view is nearly along z (+y); `zoom` > 1 narrows the view angle by that factor (VTK's
+// the view is nearly along z (+y), as is (not made square to the view: an orbit about it does
+// not roll); `zoom` > 1 narrows the view angle by that factor (VTK's
 // Zoom). Points: every point of the meshes, strided beyond a million a mesh.
 struct CameraFit {
     Vec3 from{1.0, -1.2, 0.8};

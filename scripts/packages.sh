@@ -6,7 +6,7 @@ TETRENDER_PACKAGES=(
   libvtk9-dev libcgal-dev libtet1.5-dev libtbb-dev libglm-dev libpng-dev
   nlohmann-json3-dev libcli11-dev libfreetype-dev fonts-dejavu-core
   libglfw3-dev libimgui-dev libepoxy-dev libgl1-mesa-dri xvfb xauth
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev ffmpeg
   pybind11-dev python3-dev python3-numpy python3-pytest python3-meshio
 )
 

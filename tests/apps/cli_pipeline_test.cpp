@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace tr {
 namespace {
@@ -272,6 +274,92 @@ TEST(CliQuickLook, BadOptionsAreOneLineErrors) {
     expect_one_line_error(run_cli("render " + mesh + " --scalar t --legend maybe" + out), 2,
                           "--legend takes on or off");
     EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
+    std::filesystem::remove_all(dir);
+}
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(CliAnimation, AnOrbitsFramesStartWithThePictureAndTurn) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = shell_quote(write_block(dir));
+    const std::string frames = dir + "/orbit";
+    auto run =
+        run_cli("render " + mesh + " --scalar t --size 64x48 --orbit 360 --frame-count 4 " +
+                "--frames " + shell_quote(frames) + " -o " + shell_quote(dir + "/first.png"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    run =
+        run_cli("render " + mesh + " --scalar t --size 64x48 -o " + shell_quote(dir + "/one.png"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_TRUE(std::filesystem::exists(frames + "/frame_000" + std::to_string(k) + ".png"));
+    }
+    EXPECT_FALSE(std::filesystem::exists(frames + "/frame_0004.png"));
+    EXPECT_EQ(slurp(frames + "/frame_0000.png"), slurp(dir + "/one.png"));
+    EXPECT_EQ(slurp(dir + "/first.png"), slurp(dir + "/one.png"));
+    EXPECT_NE(slurp(frames + "/frame_0001.png"), slurp(frames + "/frame_0000.png"));
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CliAnimation, EveryTimeStepOfASeriesIsAFrame) {
+    const std::string dir = make_temp_dir();
+    const std::string block = write_block(dir);
+    // Step 1 has the values in reverse order: another picture.
+    std::string text = slurp(block);
+    const std::string marker = "LOOKUP_TABLE default\n";
+    const auto at = text.find(marker) + marker.size();
+    std::vector<std::string> values;
+    std::stringstream in(text.substr(at));
+    for (std::string v; in >> v;) values.push_back(v);
+    std::string reversed;
+    for (auto it = values.rbegin(); it != values.rend(); ++it) reversed += *it + "\n";
+    std::ofstream(dir + "/reversed.vtk") << text.substr(0, at) + reversed;
+    std::ofstream(dir + "/series.pvd")
+        << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+           "<Collection>\n<DataSet timestep=\"0\" file=\"block.vtk\"/>\n"
+           "<DataSet timestep=\"1\" file=\"reversed.vtk\"/>\n"
+           "<DataSet timestep=\"2\" file=\"block.vtk\"/>\n</Collection>\n</VTKFile>\n";
+    const std::string frames = dir + "/steps";
+    const auto run =
+        run_cli("render " + shell_quote(dir + "/series.pvd") +
+                " --scalar t --size 64x48 --time-step all --frames " + shell_quote(frames));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.err.find("3 frames"), std::string::npos) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(frames + "/frame_0003.png"));
+    EXPECT_EQ(slurp(frames + "/frame_0000.png"), slurp(frames + "/frame_0002.png"));
+    EXPECT_NE(slurp(frames + "/frame_0000.png"), slurp(frames + "/frame_0001.png"));
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CliAnimation, AMovieThroughFfmpegOrAClearMessage) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = shell_quote(write_block(dir));
+    const std::string orbit = " --scalar t --size 64x48 --orbit 90 --frame-count 6 --movie ";
+    // Without ffmpeg on the PATH: one line saying what to install, nothing written.
+    auto run = testing::run_captured("PATH=/nonexistent " + shell_quote(testing::cli_path()) +
+                                     " render " + mesh + orbit + shell_quote(dir + "/a.mp4"));
+    expect_one_line_error(run, 1, "needs the ffmpeg program");
+    EXPECT_FALSE(std::filesystem::exists(dir + "/a.mp4"));
+    expect_one_line_error(run_cli("render " + mesh + orbit + shell_quote(dir + "/a.avi")), 2,
+                          ".avi");
+    if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) {
+        const char* ci = std::getenv("CI");
+        if (ci && std::string(ci) == "true") FAIL() << "CI=true but ffmpeg is not installed";
+        GTEST_SKIP() << "ffmpeg is not installed (Debian: ffmpeg)";
+    }
+    run = run_cli("render " + mesh + orbit + shell_quote(dir + "/a.mp4"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    // ffprobe (installed with ffmpeg) counts the frames the movie holds.
+    const auto probe = testing::run_captured(
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+        "-of csv=p=0 " +
+        shell_quote(dir + "/a.mp4"));
+    EXPECT_EQ(probe.out, "6\n") << probe.err;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        EXPECT_EQ(entry.path().filename().string().rfind(".tmp", 0), std::string::npos);
+    }
     std::filesystem::remove_all(dir);
 }
 

@@ -32,6 +32,8 @@ std::string make_temp_dir() {
     return dir.string();
 }
 
+std::string cli_path() { return TETRENDER_CLI_PATH; }
+
 std::string shared_data_dir() { return TETRENDER_SHARED_DATA_DIR; }
 
 bool require_shared_data() {
@@ -65,7 +67,7 @@ CliRun run_captured(const std::string& command) {
 }
 
 CliRun run_cli(const std::string& args) {
-    return run_captured(shell_quote(TETRENDER_CLI_PATH) + " " + args);
+    return run_captured(shell_quote(cli_path()) + " " + args);
 }
 
 }  // namespace tr::testing

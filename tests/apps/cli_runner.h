@@ -11,6 +11,9 @@ struct CliRun {
     std::string err;
 };
 
+// The tetrender executable under test.
+std::string cli_path();
+
 // Runs `tetrender <args>` (args is shell-quoted by the caller) and captures its output.
 CliRun run_cli(const std::string& args);
 

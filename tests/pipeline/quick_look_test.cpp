@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <pipeline/movie.h>
 #include <pipeline/quick_look.h>
 
 namespace tr {
@@ -104,7 +105,29 @@ TEST(FittingCamera, ZoomNarrowsTheViewAngleAndElevationRaisesTheEye) {
     const Camera raised = fitting_camera(std::vector<const TetMesh*>{&cube}, fit);
     const Vec3 d = glm::normalize(raised.position - raised.focal_point);
     EXPECT_NEAR(std::asin(d.z) * 180.0 / std::numbers::pi, 30.0, 1e-9);
-    EXPECT_NEAR(glm::dot(raised.view_up, d), 0.0, 1e-12);
+    EXPECT_EQ(raised.view_up, Vec3(0, 0, 1));
+}
+
+TEST(OrbitCameras, TurnAboutTheUpAxisWithoutRolling) {
+    Camera start;
+    start.position = Vec3(3, -4, 2);
+    start.focal_point = Vec3(1, 1, 1);
+    start.view_up = Vec3(0, 0, 2);
+    const auto cameras = orbit_cameras(start, 360.0, 8);
+    ASSERT_EQ(cameras.size(), 8u);
+    EXPECT_EQ(cameras[0].position, start.position);
+    for (std::size_t k = 0; k < cameras.size(); ++k) {
+        const Vec3 now = cameras[k].position - start.focal_point;
+        const Vec3 then = start.position - start.focal_point;
+        EXPECT_EQ(cameras[k].view_up, start.view_up);
+        EXPECT_NEAR(now.z, then.z, 1e-12);  // the same height along the axis
+        // Turned by 45 degrees a frame, anticlockwise seen from above.
+        const double angle = std::atan2(now.y, now.x) - std::atan2(then.y, then.x);
+        EXPECT_NEAR(std::remainder(angle - k * std::numbers::pi / 4, 2 * std::numbers::pi), 0.0,
+                    1e-12);
+        EXPECT_NEAR(glm::length(Vec3(now.x, now.y, 0)), glm::length(Vec3(then.x, then.y, 0)),
+                    1e-12);
+    }
 }
 
 }  // namespace
