@@ -62,6 +62,10 @@ struct RenderArgs {
     std::string frames_dir;
     std::string movie;
     double fps = 24;
+    // Splatting.
+    std::string vectors;  // textured vector splats of this point array
+    int cycle = 8;        // textures in their animation's cycle
+    bool sheet_buffer = false;
 };
 
 // The time step of quick mode's mesh: a number, or 0 for "all" (the frames start there).
@@ -90,12 +94,21 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
     QuickSceneOptions options = args.look == "classic" ? classic_quick_look() : QuickSceneOptions{};
     options.scalar = args.scalar;
     if (args.component != "magnitude") {
+        // A whole number >= 0: "-1" and "1.5" are not components (they used to mean the
+        // magnitude and component 1).
+        std::size_t used = 0;
+        int component = -1;
         try {
-            options.component = std::stoi(args.component);
+            component = std::stoi(args.component, &used);
         } catch (...) {
-            return make_error(ErrorCode::kInvalidArgument,
-                              "--component must be 'magnitude' or an index");
+            used = 0;
         }
+        if (used != args.component.size() || component < 0) {
+            return make_error(ErrorCode::kInvalidArgument,
+                              "--component must be 'magnitude' or an index 0, 1, 2, ..., not '" +
+                                  args.component + "'");
+        }
+        options.component = component;
     }
     if (!parse_image_size(args.size, options.width, options.height)) {
         return make_error(ErrorCode::kInvalidArgument, "--size must be WxH with sides in [1, " +
@@ -220,13 +233,20 @@ int render_frames(const RenderArgs& args, const Scene& scene, const Picture& pic
                 if (!mesh.ok() && mesh.error().code == ErrorCode::kInvalidArgument) break;
             }
         }
-        for (std::size_t k = 0; k < cameras.size(); ++k) {
+        // The frames of this step: an orbit's cameras, or a vector-splat texture cycle.
+        const std::size_t count =
+            args.vectors.empty() ? cameras.size() : static_cast<std::size_t>(args.cycle);
+        for (std::size_t k = 0; k < count; ++k) {
             // An orbit over a series turns once over all its frames: one camera a step.
             if (every_step && args.orbit != 0 &&
                 k != static_cast<std::size_t>(step) % cameras.size()) {
                 continue;
             }
-            view.camera = cameras[k];
+            if (args.vectors.empty()) {
+                view.camera = cameras[k];
+            } else {
+                view.method->options["frame"] = static_cast<std::int64_t>(k);
+            }
             auto result = picture(view);
             if (!result.ok()) {
                 cleanup();
@@ -285,6 +305,18 @@ int run_render(const RenderArgs& args) {
     }
     const bool animated = args.orbit != 0 || args.time_step == "all" || !args.frames_dir.empty() ||
                           !args.movie.empty();
+    if (!args.vectors.empty() && args.orbit != 0) {
+        std::fprintf(stderr,
+                     "tetrender: --vectors animates the splats' textures; it does not "
+                     "take --orbit\n");
+        return kExitUsage;
+    }
+    if (!args.vectors.empty() && args.sheet_buffer) {
+        std::fprintf(stderr,
+                     "tetrender: --vectors draws each splat whole; it does not take "
+                     "--sheet-buffer\n");
+        return kExitUsage;
+    }
     if (args.output.empty() && !animated) {
         std::fprintf(stderr, "tetrender: render needs -o FILE (or --frames DIR / --movie FILE)\n");
         return kExitUsage;
@@ -360,11 +392,26 @@ int run_render(const RenderArgs& args) {
         if (!quick.ok()) return report_error(quick.error());
         scene = std::move(quick).value();
     }
-    if (!args.method.empty() || args.repetitions || args.seed) {
+    const bool splat_keys = !args.vectors.empty() || args.sheet_buffer;
+    if (!args.method.empty() || args.repetitions || args.seed || splat_keys) {
         MethodSpec method = scene.method.value_or(MethodSpec{});
         if (!args.method.empty()) method.name = args.method;
         if (args.repetitions) method.repetitions = args.repetitions;
         if (args.seed) method.seed = args.seed;
+        if (splat_keys) {
+            if (!args.method.empty() && args.method != "splat") {
+                std::fprintf(stderr,
+                             "tetrender: --vectors and --sheet-buffer are for --method "
+                             "splat\n");
+                return kExitUsage;
+            }
+            method.name = "splat";
+        }
+        if (!args.vectors.empty()) {
+            method.options["vectors"] = args.vectors;
+            method.options["cycle"] = static_cast<std::int64_t>(args.cycle);
+        }
+        if (args.sheet_buffer) method.options["compositing"] = std::string("sheet-buffer");
         scene.method = method;
     }
     if (!scene_mode && !args.write_scene_path.empty()) {
@@ -480,6 +527,17 @@ std::function<int()> add_render_command(CLI::App& app) {
                     "Write the frames as DIR/frame_0000.png, ... (made if missing)");
     cmd->add_option("--movie", args->movie,
                     "Encode the frames into a movie (.mp4, .webm, .gif) with the ffmpeg program");
+    cmd->add_option("--vectors", args->vectors,
+                    "Splat: textured vector splats along this 3-component point array (method "
+                    "splat); with --frames or --movie, the frames of their texture cycle")
+        ->check(CLI::TypeValidator<std::string>());
+    cmd->add_option(
+           "--cycle", args->cycle,
+           "Splat: textures in the vector splats' cycle (default 8; frame k + N is frame k)")
+        ->check(CLI::Range(1, 1024));
+    cmd->add_flag("--sheet-buffer", args->sheet_buffer,
+                  "Splat: Westover's sheet buffer (splats summed per sheet of lattice planes, "
+                  "sheets composited) instead of each splat composited whole");
     cmd->add_option("--fps", args->fps, "Movie frames per second (default 24)")
         ->check(CLI::Range(0.1, 1000.0));
     cmd->add_option("--azimuth", args->azimuth,

@@ -271,6 +271,11 @@ TEST(CliQuickLook, BadOptionsAreOneLineErrors) {
                                   "--camera-focal-point 0,0,0" +
                                   out),
                           1, "");
+    for (const char* component : {"-1", "1.5", "x"}) {
+        expect_one_line_error(
+            run_cli("render " + mesh + " --scalar t --component " + component + out), 1,
+            "--component must be 'magnitude' or an index");
+    }
     expect_one_line_error(run_cli("render " + mesh + " --scalar t --legend maybe" + out), 2,
                           "--legend takes on or off");
     EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));

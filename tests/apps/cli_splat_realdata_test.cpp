@@ -84,5 +84,47 @@ INSTANTIATE_TEST_SUITE_P(SharedData, SplatRealData, ::testing::ValuesIn(kCases),
                              return name.substr(0, name.find('/'));
                          });
 
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The carotid's velocity as textured vector splats through the command line: --frames writes
+// the texture cycle, frame k the single picture of --vectors with that frame; what --vectors
+// refuses is a one-line error.
+TEST(SplatVectorsRealData, TheCycleOfFramesAndItsErrors) {
+    if (!testing::require_shared_data()) GTEST_SKIP() << "no shared data";
+    const std::string dir = testing::make_temp_dir();
+    const std::string mesh = testing::shell_quote(
+        (std::filesystem::path(testing::shared_data_dir()) / "carotid/carotid.vtk").string());
+    const std::string quick = "render " + mesh + " --scalar scalars --size 96x72 --vectors vectors";
+    auto run = testing::run_cli(quick + " --cycle 4 --frames " + testing::shell_quote(dir + "/f"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.err.find("4 frames"), std::string::npos) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/f/frame_0004.png"));
+    run = testing::run_cli(quick + " --cycle 4 -o " + testing::shell_quote(dir + "/one.png"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(slurp(dir + "/f/frame_0000.png"), slurp(dir + "/one.png"));
+    for (int k = 1; k < 4; ++k) {
+        // The streaks move: every frame differs from the one before.
+        EXPECT_NE(slurp(dir + "/f/frame_000" + std::to_string(k) + ".png"),
+                  slurp(dir + "/f/frame_000" + std::to_string(k - 1) + ".png"));
+    }
+    const auto one_line = [](const testing::CliRun& r, int code, const std::string& says) {
+        EXPECT_EQ(r.exit_code, code) << r.err;
+        EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+        EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+    };
+    const std::string out = " -o " + testing::shell_quote(dir + "/x.png");
+    one_line(testing::run_cli("render " + mesh + " --scalar scalars --vectors scalars" + out), 1,
+             "1 component");
+    one_line(testing::run_cli(quick + " --orbit 90 --frames " + testing::shell_quote(dir + "/o")),
+             2, "does not take --orbit");
+    one_line(testing::run_cli(quick + " --sheet-buffer" + out), 2, "--sheet-buffer");
+    one_line(testing::run_cli(quick + " --method pbvr-image" + out), 2, "for --method splat");
+    EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace tr
