@@ -10,7 +10,9 @@
 #include <flowtex/advect_frames.h>
 #include <memory>
 #include <pipeline/flow_volume_scene.h>
+#include <pipeline/movie.h>
 #include <pipeline/pipeline.h>
+#include <unistd.h>
 
 namespace tr::apps {
 namespace {
@@ -29,7 +31,12 @@ struct AdvectArgs {
     int resolution = 256;
     int reinject = 40;
     int time_step = 0;
+    std::string movie;
+    double fps = 24;
 };
+
+int advect_into(const AdvectArgs& args, const AdvectFramesOptions& options,
+                const std::filesystem::path& dir);
 
 int run_advect(const AdvectArgs& args) {
     AdvectFramesOptions options;
@@ -64,20 +71,55 @@ int run_advect(const AdvectArgs& args) {
     options.sheet_resolution = args.resolution;
     options.reinject_frames = args.reinject;
 
-    // The frames folder must take files before any work.
-    const std::filesystem::path dir(args.frames);
+    // The frames folder (a temporary one for a movie alone) must take files before any work.
+    if (args.frames.empty() && args.movie.empty()) {
+        std::fprintf(stderr, "tetrender: advect writes --frames DIR or --movie FILE\n");
+        return kExitUsage;
+    }
+    if (!args.movie.empty()) {
+        if (const Status ok = check_output_path(args.movie, {".mp4", ".webm", ".gif"}); !ok.ok()) {
+            return report_usage(ok.error());
+        }
+        if (!movie_encoder_available()) {
+            std::fprintf(stderr,
+                         "tetrender: --movie needs the ffmpeg program (Debian: apt-get "
+                         "install ffmpeg); --frames DIR writes the frames\n");
+            return kExitError;
+        }
+    }
+    const std::filesystem::path dir = args.frames.empty()
+                                          ? std::filesystem::temp_directory_path() /
+                                                ("tetrender_advect_" + std::to_string(::getpid()))
+                                          : std::filesystem::path(args.frames);
+    const auto cleanup = [&] {
+        std::error_code ignored;
+        if (args.frames.empty()) std::filesystem::remove_all(dir, ignored);
+    };
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec || !std::filesystem::is_directory(dir)) {
         std::fprintf(stderr, "tetrender: %s: error: cannot create the frames folder\n",
-                     args.frames.c_str());
+                     dir.c_str());
         return kExitError;
     }
-    if (const Status ok = check_output_path((dir / "frame_0000.png").string(), {".png"});
-        !ok.ok()) {
+    if (const Status ok = check_output_path(frame_path(dir, 0).string(), {".png"}); !ok.ok()) {
+        cleanup();
         return report_usage(ok.error());
     }
+    const int status = advect_into(args, options, dir);
+    if (status == kExitOk && !args.movie.empty()) {
+        const Status encoded = encode_movie(dir, args.fps, args.movie);
+        cleanup();
+        if (!encoded.ok()) return report_error(encoded.error());
+        std::printf("movie %s\n", args.movie.c_str());
+    }
+    cleanup();
+    return status;
+}
 
+// The frames into `dir`.
+int advect_into(const AdvectArgs& args, const AdvectFramesOptions& options,
+                const std::filesystem::path& dir) {
     PipelineOptions pipeline_options;
     pipeline_options.progress = terminal_progress();
     Pipeline pipeline(pipeline_options);
@@ -90,13 +132,10 @@ int run_advect(const AdvectArgs& args) {
     if (!velocity.ok()) return report_error(velocity.error());
 
     const std::string where = args.sheet.empty() ? args.mesh : args.sheet;
-    const auto report =
-        advect_frames(domain->mesh(), *domain->adjacency, *velocity, options,
-                      [&](int frame, const Image& picture) -> Status {
-                          char name[32];
-                          std::snprintf(name, sizeof(name), "frame_%04d.png", frame);
-                          return write_png(picture, dir / name);
-                      });
+    const auto report = advect_frames(domain->mesh(), *domain->adjacency, *velocity, options,
+                                      [&](int frame, const Image& picture) -> Status {
+                                          return write_png(picture, frame_path(dir, frame));
+                                      });
     if (!report.ok()) {
         Error error = report.error();
         if (error.where.empty()) error.where = where;
@@ -106,7 +145,7 @@ int run_advect(const AdvectArgs& args) {
                 report->sheet_points, report->sheet_triangles, report->mean_speed, report->dt,
                 report->mean_speed > 0 ? "" : " (zero velocity: still frames)");
     std::printf("wrote %d frames to %s (advection %.0f ms, raster %.0f ms)\n", report->frames,
-                args.frames.c_str(), report->advect_ms, report->raster_ms);
+                dir.c_str(), report->advect_ms, report->raster_ms);
     return kExitOk;
 }
 
@@ -127,7 +166,11 @@ std::function<int()> add_advect_command(CLI::App& app) {
                     "Instead of a slice: a planar 2D mesh of triangles or quads (.obj, .vtk, "
                     ".vtp, .ply, .stl, .off) in the mesh's space")
         ->excludes("--slice");
-    cmd->add_option("--frames", args->frames, "Folder for frame_NNNN.png (created)")->required();
+    cmd->add_option("--frames", args->frames, "Folder for frame_NNNN.png (created)");
+    cmd->add_option("--movie", args->movie,
+                    "Encode the frames into a movie (.mp4, .webm, .gif) with the ffmpeg program");
+    cmd->add_option("--fps", args->fps, "Movie frames per second (default 24)")
+        ->check(CLI::Range(0.1, 1000.0));
     cmd->add_option("--steps", args->steps, "Frames after the first (default 100)")
         ->check(CLI::Range(0, 100000));
     cmd->add_option("--dt", args->dt,

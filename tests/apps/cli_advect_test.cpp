@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -90,6 +91,33 @@ TEST(CliAdvect, WritesMovingFramesAndStillFramesForZeroVelocity) {
     ASSERT_EQ(count_files(still), 4);
     EXPECT_TRUE(bytes(still + "/frame_0000.png") == bytes(still + "/frame_0003.png"))
         << "zero velocity: frames differ";
+}
+
+TEST(CliAdvect, AMovieOfTheFramesAndNoFramesLeft) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = shell_quote(grid_file(dir, true));
+    const std::string movie = dir + "/flow.mp4";
+    const std::string common =
+        "advect " + mesh + " --vectors v --steps 5 --size 48x32 " + "--resolution 24 --movie ";
+    auto run = run_cli(common + shell_quote(dir + "/flow.avi"));
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    run = run_cli("advect " + mesh + " --vectors v --steps 5");
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_NE(run.err.find("--frames DIR or --movie FILE"), std::string::npos) << run.err;
+    if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) {
+        const char* ci = std::getenv("CI");
+        if (ci && std::string(ci) == "true") FAIL() << "CI=true but ffmpeg is not installed";
+        GTEST_SKIP() << "ffmpeg is not installed (Debian: ffmpeg)";
+    }
+    run = run_cli(common + shell_quote(movie));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto probe = testing::run_captured(
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+        "-of csv=p=0 " +
+        shell_quote(movie));
+    EXPECT_EQ(probe.out, "6\n") << probe.err;  // the first frame and 5 steps
+    // The frames went to a temporary folder, removed: the folder holds the mesh and the movie.
+    EXPECT_EQ(count_files(dir), 2);
 }
 
 TEST(CliAdvect, ASheetOfQuadsFromAFile) {
