@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <pipeline/quick_look.h>
 #include <pipeline/quick_scene.h>
 
 namespace tr::viewer {
@@ -61,9 +62,11 @@ Result<std::vector<float>> scalar_values(const ViewerScene& vs, const std::strin
 
 // The panel's edit of a volume's transfer function over its scalar's range [lo, hi]: a scene's
 // own points (with --opacity scaling them), or --colormap's ramp; --unit-distance over all.
-// `bounds`: the mesh's, for mesh mode's unit distance.
+// `bounds`: the mesh's; mesh mode's unit distance from `values` (the scalar) and `chord` (the
+// mesh's mean chord length).
 TransferEdit initial_edit(const ViewerOptions& options, bool scene_mode, const TransferFunction& tf,
-                          double lo, double hi, const Bounds3& bounds) {
+                          double lo, double hi, const Bounds3& bounds,
+                          std::span<const float> values = {}, double chord = 0) {
     TransferEdit edit;
     edit.lo = lo, edit.hi = hi;
     if (scene_mode && options.colormap.empty()) {
@@ -77,10 +80,22 @@ TransferEdit initial_edit(const ViewerOptions& options, bool scene_mode, const T
         if (options.max_opacity > 0 && largest > 0) {
             for (OpacityPoint& p : edit.opacity) p.a *= options.max_opacity / largest;
         }
-    } else {
+    } else if (scene_mode) {
         edit.colormap = options.colormap.empty() ? "viridis" : options.colormap;
         edit.opacity = ramp_opacity(lo, hi, options.max_opacity > 0 ? options.max_opacity : 0.3);
-        edit.unit_distance = scene_mode ? tf.unit_distance() : bounds.diagonal() / 20.0;
+        edit.unit_distance = tf.unit_distance();
+    } else {
+        // A mesh: the quick look's choices (pipeline/quick_look.h), as `tetrender render` makes
+        // them: a ramp from a fifth of its top, so that low values stay visible, and a unit
+        // distance that brings a typical ray through the object to opacity 0.8.
+        edit.colormap = options.colormap.empty() ? "viridis" : options.colormap;
+        const double top = options.max_opacity > 0 ? options.max_opacity : 0.5;
+        edit.opacity = ramp_opacity(lo, hi, top, 0.2);
+        const TransferFunction shape =
+            TransferFunction::create({{lo, Vec3(1.0)}}, edit.opacity, 1.0).value();
+        edit.unit_distance = unit_distance_for_opacity(
+            values, [&](double s) { return shape.opacity(s); }, chord, 0.8);
+        if (!(edit.unit_distance > 0)) edit.unit_distance = bounds.diagonal() / 20.0;
     }
     if (options.unit_distance > 0) edit.unit_distance = options.unit_distance;
     if (!(edit.unit_distance > 0)) edit.unit_distance = 1;
@@ -125,10 +140,11 @@ double remap(double s, double lo, double hi, double new_lo, double new_hi) {
 
 }  // namespace
 
-std::vector<OpacityPoint> ramp_opacity(double lo, double hi, double max_opacity) {
-    return {{lo, 0.0},
-            {lo + (hi - lo) / 3, max_opacity / 3},
-            {lo + 2 * (hi - lo) / 3, 2 * max_opacity / 3},
+std::vector<OpacityPoint> ramp_opacity(double lo, double hi, double max_opacity, double floor) {
+    const double bottom = floor * max_opacity, step = (max_opacity - bottom) / 3;
+    return {{lo, bottom},
+            {lo + (hi - lo) / 3, bottom + step},
+            {lo + 2 * (hi - lo) / 3, bottom + 2 * step},
             {hi, max_opacity}};
 }
 
@@ -199,13 +215,27 @@ Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
         component = vs.volume().component;
     } else {
         vs.scalar_name = options.scalar.empty() ? vs.arrays.front() : options.scalar;
-        vs.scene.camera = framing_camera(bounds, kDefaultViewDirection);
+        CameraFit fit;
+        fit.from = kDefaultViewDirection;
+        fit.width = vs.scene.width, fit.height = vs.scene.height;
+        vs.scene.camera = fitting_camera(std::vector<const TetMesh*>{&loaded->tets}, fit);
     }
     double lo = 0, hi = 1;
     auto values = scalar_values(vs, vs.scalar_name, component, lo, hi);
     if (!values.ok()) return with_where(values.error(), mesh_name);
     vs.scalar = std::move(values).value();
-    vs.edit = initial_edit(options, scene_mode, vs.volume().transfer_function, lo, hi, bounds);
+    double chord = 0;
+    if (!scene_mode) {
+        // The quick look's range: the 1st to 99th percentile (the whole range when that is
+        // one value).
+        if (const auto robust = robust_range(vs.scalar, 1.0);
+            robust.ok() && (*robust)[1] > (*robust)[0]) {
+            lo = (*robust)[0], hi = (*robust)[1];
+        }
+        chord = mean_chord_length(loaded->tets);
+    }
+    vs.edit = initial_edit(options, scene_mode, vs.volume().transfer_function, lo, hi, bounds,
+                           vs.scalar, chord);
     TR_TRY(vs.volume().transfer_function, make_transfer_function(vs.edit));
     TR_TRY(vs.opaque, pipeline.opaque(vs.scene));
     return vs;

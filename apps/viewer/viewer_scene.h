@@ -105,7 +105,8 @@ Status select_fused_scalar(ViewerScene& scene, std::size_t volume, const std::st
 // The transfer function of `edit`.
 Result<TransferFunction> make_transfer_function(const TransferEdit& edit);
 
-// The initial opacity points: a ramp from 0 at lo to `max_opacity` at hi.
-std::vector<OpacityPoint> ramp_opacity(double lo, double hi, double max_opacity);
+// The initial opacity points: a ramp from floor * max_opacity at lo to `max_opacity` at hi.
+std::vector<OpacityPoint> ramp_opacity(double lo, double hi, double max_opacity,
+                                       double floor = 0.0);
 
 }  // namespace tr::viewer
