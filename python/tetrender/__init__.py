@@ -124,8 +124,10 @@ class Mesh:
         self.connectivity = _array(connectivity, np.int64, "connectivity")
         self.types = _array(types, np.uint8, "types")
         self.offsets = None if offsets is None else _array(offsets, np.int64, "offsets")
-        self.point_data = {str(k): _field(v, f"point_data['{k}']") for k, v in (point_data or {}).items()}
-        self.cell_data = {str(k): _field(v, f"cell_data['{k}']") for k, v in (cell_data or {}).items()}
+        self.point_data = {str(k): _field(v, f"point_data['{k}']")
+                           for k, v in (point_data or {}).items()}
+        self.cell_data = {str(k): _field(v, f"cell_data['{k}']")
+                          for k, v in (cell_data or {}).items()}
         self.name = name
         self._handle: Any = None  # the library's mesh these arrays are views of, if any
         self._tets: Any = None  # the library's tetrahedral mesh, if this is one
@@ -189,7 +191,8 @@ class Mesh:
     # --- From other libraries ----------------------------------------------------------
 
     @classmethod
-    def from_meshio(cls, mesh: Any, volume_only: bool = True, name: str = "<meshio mesh>") -> "Mesh":
+    def from_meshio(cls, mesh: Any, volume_only: bool = True,
+                    name: str = "<meshio mesh>") -> "Mesh":
         """A Mesh from a ``meshio.Mesh`` (meshio keeps VTK's node order but for linear wedges,
         whose nodes it orders as Gmsh does: they are put back in VTK's order here).
 
@@ -197,7 +200,8 @@ class Mesh:
         boundary triangles), which tetrahedralize() would refuse; their cell_data go with them.
         Cell types meshio names but CELL_TYPES does not are an Error naming the type.
         """
-        blocks = [(i, b) for i, b in enumerate(mesh.cells) if not (volume_only and b.type in _SURFACE_TYPES)]
+        blocks = [(i, b) for i, b in enumerate(mesh.cells)
+                  if not (volume_only and b.type in _SURFACE_TYPES)]
         connectivity, sizes, types = [], [], []
         for _, block in blocks:
             if block.type not in CELL_TYPES:
@@ -217,8 +221,11 @@ class Mesh:
             parts = [np.asarray(per_block[i]) for i, _ in blocks]
             if parts:
                 cell_data[key] = np.concatenate(parts)
+        points = np.asarray(mesh.points)
+        if points.ndim == 2 and points.shape[1] < 3:  # 2D meshes: z = 0
+            points = np.pad(points, ((0, 0), (0, 3 - points.shape[1])))
         return cls(
-            mesh.points if mesh.points.shape[1] == 3 else np.pad(mesh.points, ((0, 0), (0, 3 - mesh.points.shape[1]))),
+            points,
             cat(connectivity, np.int64),
             offsets,
             cat(types, np.uint8),
@@ -229,7 +236,7 @@ class Mesh:
 
     @classmethod
     def from_pyvista(cls, grid: Any, name: str = "<pyvista grid>") -> "Mesh":
-        """A Mesh from anything shaped like a PyVista ``UnstructuredGrid`` (PyVista is not imported).
+        """A Mesh from anything shaped like a PyVista ``UnstructuredGrid`` (PyVista not imported).
 
         Reads ``points``, ``celltypes``, ``point_data`` and ``cell_data`` (when present), and
         the cells from ``cell_connectivity`` and ``offset`` when the object has them (PyVista
@@ -251,7 +258,8 @@ class Mesh:
                 offsets[c + 1] = offsets[c] + cells[position]
                 position += 1 + int(cells[position])
             if position != len(cells):
-                raise Error(f"error: {name}: cells has {len(cells)} entries, the counts say {position}")
+                raise Error(f"error: {name}: cells has {len(cells)} entries, "
+                            f"the counts say {position}")
             index = np.repeat(starts - offsets[:-1], np.diff(offsets)) + np.arange(offsets[-1])
             connectivity = cells[index]
 
@@ -273,7 +281,7 @@ class Mesh:
         """``mesh`` as a Mesh: a Mesh itself, a ``meshio.Mesh``, or a PyVista-shaped grid."""
         if isinstance(mesh, Mesh):
             return mesh
-        if hasattr(mesh, "cells") and hasattr(mesh, "cell_data") and hasattr(mesh, "points") and not hasattr(mesh, "celltypes"):
+        if hasattr(mesh, "points") and hasattr(mesh, "cells") and not hasattr(mesh, "celltypes"):
             return cls.from_meshio(mesh)
         if hasattr(mesh, "points") and hasattr(mesh, "celltypes"):
             return cls.from_pyvista(mesh)
@@ -303,7 +311,8 @@ class Mesh:
             block_ranges.append((start, end))
             start = end
         cell_data = {k: [v[a:b] for a, b in block_ranges] for k, v in self.cell_data.items()}
-        return meshio.Mesh(self.points, blocks, point_data=dict(self.point_data), cell_data=cell_data)
+        return meshio.Mesh(self.points, blocks, point_data=dict(self.point_data),
+                           cell_data=cell_data)
 
     # --- Facts ---------------------------------------------------------------------------
 
@@ -318,6 +327,7 @@ class Mesh:
         return len(self.types)
 
     def __repr__(self) -> str:
+        """Counts and array names."""
         return (f"tetrender.Mesh({self.num_points} points, {self.num_cells} cells, "
                 f"point_data={list(self.point_data)}, cell_data={list(self.cell_data)})")
 
@@ -383,11 +393,13 @@ class Scene:
         else:
             volumes = [scene]
         for index, volume in enumerate(volumes):
-            if isinstance(volume, dict) and "mesh" in volume and not isinstance(volume["mesh"], (str, os.PathLike)):
+            if not isinstance(volume, dict) or "mesh" not in volume:
+                continue  # the parser says what is missing
+            if not isinstance(volume["mesh"], (str, os.PathLike)):
                 mesh = Mesh.from_any(volume["mesh"])
                 handed.append((index, mesh))
                 volume["mesh"] = f"<in-memory mesh {index}>"
-            elif isinstance(volume, dict) and isinstance(volume.get("mesh"), os.PathLike):
+            elif isinstance(volume["mesh"], os.PathLike):
                 volume["mesh"] = os.fspath(volume["mesh"])
         try:
             text = json.dumps(scene)
@@ -455,7 +467,8 @@ class Scene:
 
     def mesh(self, volume: int = 0) -> Mesh:
         """The volume's tetrahedral mesh as the renderer loads it (cell ids of sort orders)."""
-        return Mesh._from_tets(self._handle.volume_tets(volume), self._handle.volume_mesh_path(volume))
+        return Mesh._from_tets(self._handle.volume_tets(volume),
+                               self._handle.volume_mesh_path(volume))
 
     def set_view(self, camera: Mapping[str, Any], image: Mapping[str, Any] | None = None) -> None:
         """Changes the camera (and the image's size and background): the scene file's
@@ -476,7 +489,9 @@ class Scene:
         self._handle.write(os.fspath(path))
 
     def __repr__(self) -> str:
-        return f"tetrender.Scene({self.num_volumes} volume(s), {self.width}x{self.height}, method={self.method!r})"
+        """Volumes, image size and method."""
+        return (f"tetrender.Scene({self.num_volumes} volume(s), {self.width}x{self.height}, "
+                f"method={self.method!r})")
 
 
 def _scene(scene: Any) -> Scene:
@@ -545,10 +560,11 @@ def flow_volume(
     spec = {"vectors": vectors,
             "seed_center": [float(v) for v in seed_center],
             "seed_size": [float(v) for v in seed_size]}
-    spec.update({k: (np.asarray(v).tolist() if isinstance(v, np.ndarray) else v) for k, v in options.items()})
+    spec.update({k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in options.items()})
     scene["flow_volume"] = spec
     as_float = np.dtype(dtype) == np.float32
-    image, _, _, tets = Scene(scene, base_dir=base_dir)._handle.render("", "auto", "preintegrated", as_float)
+    handle = Scene(scene, base_dir=base_dir)._handle
+    image, _, _, tets = handle.render("", "auto", "preintegrated", as_float)
     return image, Mesh._from_tets(tets, "flow volume")
 
 
