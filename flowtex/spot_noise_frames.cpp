@@ -1,0 +1,104 @@
+#include <chrono>
+#include <cmath>
+#include <flowtex/flow.h>
+#include <flowtex/spot_noise_frames.h>
+
+namespace tr {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+std::string scalar_arrays(const TetMesh& mesh) {
+    std::string names;
+    for (const Field& f : mesh.point_fields()) {
+        if (f.num_components != 1) continue;
+        names += (names.empty() ? "" : ", ") + f.name;
+    }
+    return names.empty() ? "none" : names;
+}
+
+}  // namespace
+
+Result<SpotNoiseFramesReport> spot_noise_frames(
+    const TetMesh& mesh, const FaceAdjacency& adjacency, const VelocityField& velocity,
+    const SpotNoiseFramesOptions& options,
+    const std::function<Status(int frame, const Image& picture)>& on_frame) {
+    if (options.steps < 0 || options.width < 1 || options.height < 1 || options.spots.band < 0 ||
+        options.spots.dt < 0 || !std::isfinite(options.spots.dt)) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "spot noise needs steps >= 0, a positive size, band >= 0 and dt >= 0");
+    }
+    const Field* scalar = find_field(mesh.point_fields(), options.scalar);
+    if (!scalar) {
+        return make_error(
+            ErrorCode::kNotFound,
+            "no point array '" + options.scalar + "' (scalar arrays: " + scalar_arrays(mesh) + ")");
+    }
+    if (scalar->num_components != 1) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "'" + options.scalar + "' has " + std::to_string(scalar->num_components) +
+                              " components; --scalar needs a scalar (" + scalar_arrays(mesh) + ")");
+    }
+    Camera camera;
+    if (options.camera) {
+        camera = *options.camera;
+    } else {
+        camera = framing_camera(mesh.bounds(), Vec3(1, -1.2, 0.8));
+    }
+    TR_TRY_STATUS(check_camera(camera));
+
+    const double diagonal = glm::length(mesh.bounds().size());
+    SpotNoiseOptions spot_options = options.spots;
+    if (spot_options.band == 0) spot_options.band = diagonal / 100.0;
+    const bool auto_dt = spot_options.dt == 0;
+    if (auto_dt) spot_options.dt = 1.0;
+    const MeshFlow flow(mesh, adjacency, velocity);
+    TR_TRY(SpotNoise spots, SpotNoise::create(mesh, flow.locator(), *scalar, flow, spot_options));
+
+    SpotNoiseFramesReport report;
+    report.band_tets = spots.band_tets();
+    report.spots = spots.size();
+    report.band = spot_options.band;
+    report.mean_speed = spots.mean_speed();
+    double dt = spot_options.dt;
+    int lifetime = spot_options.lifetime_frames;
+    if (!(report.mean_speed > 0) || !std::isfinite(report.mean_speed)) {
+        dt = auto_dt ? 1.0 : dt;
+        lifetime = 0;  // nothing moves: still frames
+    } else if (auto_dt) {
+        dt = diagonal / 400.0 / report.mean_speed;
+    }
+    spots.retime(dt, lifetime);
+    report.dt = dt;
+
+    const CameraFrame frame(camera, options.width, options.height);
+    SpotRasterOptions raster = options.raster;
+    raster.dt = dt;
+    OpaqueLayer opaque;
+    if (!options.opaque.empty()) {
+        opaque = render_opaque(options.opaque, frame, Vec3(raster.background));
+        raster.opaque_color = &opaque.color;
+        raster.opaque_depth = &opaque.depth;
+    }
+    SpotBuffers buffers;
+    Image picture;
+    for (int k = 0; k <= options.steps; ++k) {
+        if (k > 0) {
+            const auto start = std::chrono::steady_clock::now();
+            spots.advance();
+            report.reseeded += spots.reseeded();
+            report.advect_ms += ms_since(start);
+        }
+        const auto start = std::chrono::steady_clock::now();
+        render_spots(frame, spots, raster, buffers, picture);
+        report.raster_ms += ms_since(start);
+        TR_TRY_STATUS(on_frame(k, picture));
+        ++report.frames;
+    }
+    return report;
+}
+
+}  // namespace tr

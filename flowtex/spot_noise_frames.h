@@ -1,0 +1,56 @@
+#pragma once
+// Spot noise from a mesh's scalar and vector fields to pictures, frame by frame: what
+// `tetrender spotnoise` runs (the app only parses arguments and writes files).
+
+#include <core/camera.h>
+#include <core/image.h>
+#include <core/result.h>
+#include <flowvol/velocity_field.h>
+#include <mesh/face_adjacency.h>
+#include <mesh/tet_mesh.h>
+#include <project/opaque_geometry.h>
+
+#include <flowtex/spot_noise.h>
+#include <flowtex/spot_raster.h>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tr {
+
+struct SpotNoiseFramesOptions {
+    std::string scalar;  // a 1-component point array of the mesh
+    // iso, count, seed, lifetime as given; band 0: the mesh bounds' diagonal / 100; dt 0: the
+    // mean speed over the spots at frame 0 carries a spot 1/400 of the diagonal per frame.
+    SpotNoiseOptions spots;
+    int steps = 100;  // frames after frame 0
+    int width = 512, height = 512;
+    // Default: a perspective view of the mesh bounds from (1, -1.2, 0.8).
+    std::optional<Camera> camera;
+    // Opaque surfaces drawn under the spots, which are depth-tested against them.
+    std::vector<OpaqueSurface> opaque;
+    SpotRasterOptions raster;  // its dt is set to the spots' dt
+};
+
+struct SpotNoiseFramesReport {
+    std::size_t band_tets = 0, spots = 0;
+    double band = 0, dt = 0;
+    double mean_speed = 0;                // over the spots at frame 0
+    int frames = 0;                       // pictures handed to on_frame (steps + 1)
+    std::size_t reseeded = 0;             // summed over the frames
+    double advect_ms = 0, raster_ms = 0;  // summed over the frames
+};
+
+// Seeds spots in the band around `scalar` = iso, advects them `steps` frames and hands each
+// frame's picture (frame 0 first) to on_frame, which may fail (a write) and stop the run. Zero
+// velocity everywhere gives still frames (dt 1, no reseeding by age). Errors (one line): no such
+// scalar array (the message lists the scalar arrays), a vector array given as the scalar, those
+// of SpotNoise::create (iso outside the range, with it; bad count), bad sizes or steps, the
+// camera's, on_frame's. Cost: per frame an RK4 step per spot and a raster.
+Result<SpotNoiseFramesReport> spot_noise_frames(
+    const TetMesh& mesh, const FaceAdjacency& adjacency, const VelocityField& velocity,
+    const SpotNoiseFramesOptions& options,
+    const std::function<Status(int frame, const Image& picture)>& on_frame);
+
+}  // namespace tr

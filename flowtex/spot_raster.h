@@ -1,0 +1,68 @@
+#pragma once
+// Drawing spot noise (flowtex/spot_noise.h): each spot a Gaussian stretched into an ellipse along
+// its projected velocity, composited additively, depth-tested against opaque geometry.
+
+#include <core/camera.h>
+#include <core/image.h>
+
+#include <flowtex/spot_noise.h>
+#include <optional>
+#include <vector>
+
+namespace tr {
+
+// How the spots are drawn.
+struct SpotRasterOptions {
+    double sigma_px = 1.5;  // the round spot's Gaussian sigma, pixels
+    // The long axis's sigma is sigma_px + stretch x (the spot's projected displacement over
+    // one frame's dt, pixels), at most max_sigma_px: faster across the view, longer.
+    double stretch = 1.0;
+    double max_sigma_px = 24.0;
+    double dt = 0.05;  // the flow time the displacement is taken over
+    // Colour: additive compositing. Each spot i has a random intensity a_i = +-(0.5 .. 1)
+    // (zero mean, from its index and generation) and weight w_i(x) = exp(-q/2), q the squared
+    // Mahalanobis distance from its centre (cut at q = 9, 3 sigma). Per pixel I = sum a_i w_i,
+    // W = sum w_i (in spot order: deterministic); grey g = 0.5 + 0.5 tanh(contrast I /
+    // sqrt(1 + W)), opacity alpha = 1 - exp(-opacity W), colour mix(dark, light, g) over the
+    // background (or the opaque geometry) by alpha.
+    double contrast = 1.2;
+    double opacity = 1.5;
+    Vec3f dark{0.05f, 0.08f, 0.22f};
+    Vec3f light{1.0f, 0.93f, 0.72f};
+    Vec3f background{0.0f};
+    // Opaque geometry drawn first (project/opaque_geometry.h's OpaqueLayer): its colour under
+    // the spots and, per pixel, the ray parameter of its nearest surface; a spot is drawn on a
+    // pixel only where its centre's ray parameter (along the ray through the pixel holding the
+    // centre) is nearer. Null: none. Must be of the frame's size.
+    const Image* opaque_color = nullptr;
+    const std::vector<double>* opaque_depth = nullptr;
+};
+
+// The sums per pixel (row-major from the top).
+struct SpotBuffers {
+    int width = 0, height = 0;
+    std::vector<float> intensity;  // I
+    std::vector<float> coverage;   // W
+};
+
+// The projected ellipse of a spot at `point` moving with `velocity`: centre (pixels), unit
+// long-axis direction on the image (x right, y down; (1, 0) when the projected velocity is
+// zero), sigmas along and across. Nothing behind a perspective eye.
+struct SpotEllipse {
+    glm::dvec2 centre{0.0}, direction{1.0, 0.0};
+    double sigma_long = 0, sigma_short = 0;
+    double depth = 0;  // the centre's ray parameter
+};
+std::optional<SpotEllipse> spot_ellipse(const CameraFrame& camera, const Vec3& point,
+                                        const Vec3& velocity, const SpotRasterOptions& options);
+
+// Accumulates the spots into `buffers` (resized, zeroed). Bit-identical for any thread count
+// (bands of rows, spots in order within a band). Cost: O(spots + covered pixels).
+void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
+                 const SpotRasterOptions& options, SpotBuffers& buffers);
+
+// splat_spots and the colouring into `image` (resized; every pixel written).
+void render_spots(const CameraFrame& camera, const SpotNoise& spots,
+                  const SpotRasterOptions& options, SpotBuffers& buffers, Image& image);
+
+}  // namespace tr
