@@ -353,6 +353,14 @@ Result<std::vector<ColormapPreset>> parse_colormap_presets(const std::string& te
         if (colon != std::string::npos) what = what.substr(colon);
         return make_error(ErrorCode::kParse, "malformed JSON: " + what,
                           source + ":" + line_column(text, e.byte));
+    } catch (const json::out_of_range& e) {
+        // A number beyond a double (1e400): "[json.exception.out_of_range.406] number overflow
+        // parsing '1e400'" -> the part after the id.
+        std::string what = e.what();
+        const auto pos = what.find("] ");
+        if (pos != std::string::npos) what = what.substr(pos + 2);
+        return make_error(ErrorCode::kParse, "malformed JSON: " + what + " (beyond a double)",
+                          source);
     }
     std::vector<ColormapPreset> presets;
     if (document.is_object()) {

@@ -324,6 +324,13 @@ Result<Scene> parse_scene(const std::string& text, const std::filesystem::path& 
         const auto pos = what.find("] ");
         if (pos != std::string::npos) what = what.substr(pos + 2);
         return make_error(ErrorCode::kParse, what, name);
+    } catch (const json::out_of_range& e) {
+        // A number beyond a double (1e400): "[json.exception.out_of_range.406] number overflow
+        // parsing '1e400'" -> the part after the id.
+        std::string what = e.what();
+        const auto pos = what.find("] ");
+        if (pos != std::string::npos) what = what.substr(pos + 2);
+        return make_error(ErrorCode::kParse, what + " (beyond a double)", name);
     }
     try {
         Scene scene;
