@@ -102,7 +102,8 @@ class PbvrObject final : public RenderMethod {
             ps.opaque_color = &layer.color;
             ps.opaque_depth = &layer.depth;
         }
-        const double candidates = expected_candidates(ps, options);
+        const ObjectPbvrPlan plan = plan_object_pbvr(ps, options);
+        const double candidates = plan.candidates;
         if (candidates > kMaxObjectCandidates) {
             return make_error(
                 ErrorCode::kInvalidArgument,
@@ -114,7 +115,7 @@ class PbvrObject final : public RenderMethod {
                 scene.source);
         }
         ObjectPbvrStats stats;
-        result.image = render_object_pbvr(ps, options, &stats);
+        result.image = render_object_pbvr(ps, options, &stats, &plan);
         NamedStats& s = result.stats;
         s.set("generate_ms", stats.generate_ms);
         s.set("resolve_ms", stats.resolve_ms);

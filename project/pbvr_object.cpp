@@ -429,28 +429,31 @@ double expected_particles(const VolumeData& volume, CellId t, const CameraFrame&
     return integrate_density(volume, view, cell_of(volume, t));
 }
 
-double expected_candidates(const VolumeScene& scene, const ObjectPbvrOptions& options) {
+ObjectPbvrPlan plan_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& options) {
     const View view =
         make_view(*scene.camera, std::max(1, options.subpixel_level), scene_size(scene));
-    double total = 0;
+    ObjectPbvrPlan plan;
     for (const VolumeData& v : scene.volumes) {
-        for (float b : cell_bounds(v, view, options.sampling)) total += b;
+        plan.bounds.push_back(cell_bounds(v, view, options.sampling));
+        for (float b : plan.bounds.back()) plan.candidates += b;
     }
-    return total;
+    return plan;
+}
+
+double expected_candidates(const VolumeScene& scene, const ObjectPbvrOptions& options) {
+    return plan_object_pbvr(scene, options).candidates;
 }
 
 Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& options,
-                         ObjectPbvrStats* stats) {
+                         ObjectPbvrStats* stats, const ObjectPbvrPlan* plan) {
     const CameraFrame& camera = *scene.camera;
     const int w = camera.width(), h = camera.height();
     const int level = std::max(1, options.subpixel_level);
     const int repetitions = std::max(1, options.repetitions);
     const View view = make_view(camera, level, scene_size(scene));
     ParticleBuffer buffer(view, scene);
-    std::vector<std::vector<float>> bounds;
-    for (const VolumeData& v : scene.volumes) {
-        bounds.push_back(cell_bounds(v, view, options.sampling));
-    }
+    const ObjectPbvrPlan own = plan ? ObjectPbvrPlan{} : plan_object_pbvr(scene, options);
+    const std::vector<std::vector<float>>& bounds = plan ? plan->bounds : own.bounds;
     std::vector<double> sum(static_cast<std::size_t>(w) * h * 3, 0.0);
     std::atomic<std::size_t> candidates{0}, particles{0}, projected{0};
     double generate_ms = 0, resolve_ms = 0;
@@ -496,7 +499,8 @@ Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& opti
 }
 
 ObjectParticleSet ObjectParticleSet::generate(const VolumeScene& scene,
-                                              const ObjectPbvrOptions& options) {
+                                              const ObjectPbvrOptions& options,
+                                              const ObjectPbvrPlan* plan) {
     ObjectParticleSet set;
     set.options_ = options;
     set.options_.repetitions = std::max(1, options.repetitions);
@@ -507,19 +511,23 @@ ObjectParticleSet ObjectParticleSet::generate(const VolumeScene& scene,
         set.functions_.push_back({*v.tf});
         set.cell_function_.emplace_back(v.mesh->num_real_tets(), std::uint16_t{0});
     }
-    set.generate_cells(scene, nullptr);
+    set.generate_cells(scene, nullptr, plan);
     return set;
 }
 
 void ObjectParticleSet::generate_cells(const VolumeScene& scene,
-                                       const std::vector<std::vector<char>>* only) {
+                                       const std::vector<std::vector<char>>* only,
+                                       const ObjectPbvrPlan* plan) {
     const View view = make_view(*frame_, options_.subpixel_level, scene_size(scene));
     ObjectPbvrOptions options = options_;
     // The first generation draws what render_object_pbvr draws; regenerations new numbers.
     if (generation_ > 0) options.seed = hash_key(options_.seed, generation_);
     for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
         const VolumeData& volume = scene.volumes[v];
-        const std::vector<float> bound = cell_bounds(volume, view, options.sampling);
+        // The plan's bounds are the first generation's (its options); later ones draw anew.
+        const std::vector<float> bound = plan && generation_ == 0
+                                             ? plan->bounds[v]
+                                             : cell_bounds(volume, view, options.sampling);
         const Generator gen{volume, v, view, options, bound};
         const std::size_t cells = volume.mesh->num_real_tets();
         const std::size_t chunks = (cells + kCellsPerChunk - 1) / kCellsPerChunk;

@@ -67,6 +67,17 @@ double expected_particles(const VolumeData& volume, CellId t, const CameraFrame&
 // more than any budget (kMaxObjectCandidates). Cost: O(cells).
 double expected_candidates(const VolumeScene& scene, const ObjectPbvrOptions& options);
 
+// What a view's particles are drawn from: each volume's bound on each real cell's candidates
+// (the density's bound times the cell's volume, as the sampling uses it) and their sum, the
+// expected candidates a repetition. Made once, it serves the budget check and the render
+// (render_object_pbvr, ObjectParticleSet::generate) for the same scene, camera and options.
+// Cost: O(cells).
+struct ObjectPbvrPlan {
+    std::vector<std::vector<float>> bounds;  // [volume][real cell]
+    double candidates = 0;
+};
+ObjectPbvrPlan plan_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& options);
+
 // Candidates per repetition above this are refused (2^28: about 2,700 times those of a
 // 1M-tet mesh seen whole at 512 x 512, and tens of seconds a repetition on one core).
 inline constexpr double kMaxObjectCandidates = 268435456.0;
@@ -77,8 +88,9 @@ inline constexpr double kMaxObjectCandidates = 268435456.0;
 // particles (the sum over cells of rho's integral, about pixels x L^2 x the optical depth of a
 // ray, times the thinning overhead) plus O(pixels x L^2); memory 8 bytes per sub-pixel plus
 // 24 bytes per pixel.
+// `plan`, when given, is plan_object_pbvr(scene, options) (not computed again).
 Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& options,
-                         ObjectPbvrStats* stats = nullptr);
+                         ObjectPbvrStats* stats = nullptr, const ObjectPbvrPlan* plan = nullptr);
 
 // Particles kept between pictures (paper, 3.2: "we need to change the particle radius on the
 // condition that the particle density stays the same"). Each particle keeps its position, its
@@ -103,7 +115,9 @@ class ObjectParticleSet {
 
     // The particles of every repetition for the scene's view and transfer functions (the same
     // as render_object_pbvr draws). Memory: 24 bytes a particle.
-    static ObjectParticleSet generate(const VolumeScene& scene, const ObjectPbvrOptions& options);
+    // `plan`, when given, is plan_object_pbvr(scene, options).
+    static ObjectParticleSet generate(const VolumeScene& scene, const ObjectPbvrOptions& options,
+                                      const ObjectPbvrPlan* plan = nullptr);
 
     // Whether the kept particles hold for `camera`: orthographic, and the same sub-pixel size
     // (parallel scale, image height, sub-pixel level) as when generated; or the same camera.
@@ -129,7 +143,8 @@ class ObjectParticleSet {
         std::uint32_t volume : 4;
     };
     // Generates the cells marked in `only` (all when null) and appends their particles.
-    void generate_cells(const VolumeScene& scene, const std::vector<std::vector<char>>* only);
+    void generate_cells(const VolumeScene& scene, const std::vector<std::vector<char>>* only,
+                        const ObjectPbvrPlan* plan = nullptr);
 
     ObjectPbvrOptions options_;
     std::optional<CameraFrame> frame_;            // the view generated for

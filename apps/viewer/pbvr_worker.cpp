@@ -213,13 +213,14 @@ void PbvrWorker::run_batch(Job& job, int target) {
         ObjectPbvrOptions options = settings_.object;
         options.repetitions = repetitions;
         options.seed = seed;
-        if (expected_candidates(job.scene, options) > kMaxObjectCandidates) {
+        const ObjectPbvrPlan plan = plan_object_pbvr(job.scene, options);
+        if (plan.candidates > kMaxObjectCandidates) {
             stats.error =
                 "pbvr-object: too many particles for this view (the camera is inside or very "
                 "near the volume); move it out, or use pbvr-image";
             return;
         }
-        ObjectParticleSet set = ObjectParticleSet::generate(job.scene, options);
+        ObjectParticleSet set = ObjectParticleSet::generate(job.scene, options, &plan);
         image = set.render(job.scene);
         stats.particles += set.size();
         std::size_t kept_bytes = 0;
