@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     auto flowvol = add_flowvol_command(app);
     auto compare = add_compare_command(app);
     auto advect = add_advect_command(app);
+    auto spotnoise = add_spotnoise_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("flowvol")) return flowvol();
         if (app.got_subcommand("compare")) return compare();
         if (app.got_subcommand("advect")) return advect();
+        if (app.got_subcommand("spotnoise")) return spotnoise();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tetrender: internal error: %s\n", e.what());
         return kExitError;

@@ -42,14 +42,6 @@ Result<SpotNoiseFramesReport> spot_noise_frames(
                           "'" + options.scalar + "' has " + std::to_string(scalar->num_components) +
                               " components; --scalar needs a scalar (" + scalar_arrays(mesh) + ")");
     }
-    Camera camera;
-    if (options.camera) {
-        camera = *options.camera;
-    } else {
-        camera = framing_camera(mesh.bounds(), Vec3(1, -1.2, 0.8));
-    }
-    TR_TRY_STATUS(check_camera(camera));
-
     const double diagonal = glm::length(mesh.bounds().size());
     SpotNoiseOptions spot_options = options.spots;
     if (spot_options.band == 0) spot_options.band = diagonal / 100.0;
@@ -73,6 +65,19 @@ Result<SpotNoiseFramesReport> spot_noise_frames(
     }
     spots.retime(dt, lifetime);
     report.dt = dt;
+
+    Camera camera;
+    if (options.camera) {
+        camera = *options.camera;
+    } else {
+        Bounds3 box{Vec3(1e300), Vec3(-1e300)};
+        for (const Vec3& p : spots.positions()) {
+            box.lo = glm::min(box.lo, p);
+            box.hi = glm::max(box.hi, p);
+        }
+        camera = framing_camera(box, Vec3(1, -1.2, 0.8));
+    }
+    TR_TRY_STATUS(check_camera(camera));
 
     const CameraFrame frame(camera, options.width, options.height);
     SpotRasterOptions raster = options.raster;

@@ -26,7 +26,7 @@ struct SpotNoiseFramesOptions {
     SpotNoiseOptions spots;
     int steps = 100;  // frames after frame 0
     int width = 512, height = 512;
-    // Default: a perspective view of the mesh bounds from (1, -1.2, 0.8).
+    // Default: a perspective view (30 degrees) from (1, -1.2, 0.8) framing the spots of frame 0.
     std::optional<Camera> camera;
     // Opaque surfaces drawn under the spots, which are depth-tested against them.
     std::vector<OpaqueSurface> opaque;
