@@ -12,6 +12,7 @@
 #include <cstring>
 #include <memory>
 #include <mutex>
+#include <pipeline/annotations.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
 #include <pybind11/numpy.h>
@@ -380,7 +381,8 @@ PYBIND11_MODULE(_core, m) {
         .def(
             "render",
             [](SceneHandle& s, const std::string& method, const std::string& sort,
-               const std::string& integrator, bool as_float) {
+               const std::string& integrator, bool as_float, bool legend, bool bounding_box,
+               bool axes) {
                 tr::RenderOptions options;
                 options.sort = unwrap(tr::sort_method_named(sort));
                 unwrap(tr::set_integrator_option(options, integrator));
@@ -390,10 +392,19 @@ PYBIND11_MODULE(_core, m) {
                     spec.name = method;
                     scene.method = spec;
                 }
-                tr::Result<tr::RenderResult> result = [&] {
+                tr::Result<tr::RenderResult> result = [&]() -> tr::Result<tr::RenderResult> {
                     py::gil_scoped_release release;
                     std::lock_guard lock(*s.mutex);
-                    return s.pipeline->render(scene, options);
+                    TR_TRY(tr::RenderResult rendered, s.pipeline->render(scene, options));
+                    if (legend || bounding_box || axes) {
+                        tr::AnnotationOptions annotations;
+                        annotations.legend = legend;
+                        annotations.bounding_box = bounding_box;
+                        annotations.axes = axes;
+                        TR_TRY_STATUS(
+                            tr::annotate(rendered.image, scene, *s.pipeline, annotations));
+                    }
+                    return rendered;
                 }();
                 tr::RenderResult rendered = unwrap(std::move(result));
                 py::object flow = py::none();
@@ -407,7 +418,8 @@ PYBIND11_MODULE(_core, m) {
                 return py::make_tuple(image_array(rendered.image, as_float),
                                       stats_dict(rendered.stats), rendered.notes, flow);
             },
-            py::arg("method"), py::arg("sort"), py::arg("integrator"), py::arg("as_float"))
+            py::arg("method"), py::arg("sort"), py::arg("integrator"), py::arg("as_float"),
+            py::arg("legend") = false, py::arg("bounding_box") = false, py::arg("axes") = false)
         .def(
             "sort",
             [](py::object self, std::size_t index, const std::string& method) {

@@ -505,6 +505,9 @@ def render(
     integrator: str = "preintegrated",
     dtype: Any = np.uint8,
     return_stats: bool = False,
+    legend: bool = False,
+    bounding_box: bool = False,
+    axes: bool = False,
 ) -> Any:
     """Renders a scene (a Scene, or what Scene() takes) to an ``(H, W, 3)`` array, row 0 at the top.
 
@@ -513,11 +516,16 @@ def render(
     exp-texture, reference) are the CLI's ``--sort`` and ``--integrator``. ``dtype`` uint8 gives
     the PNG's bytes (linear, clamped, rounded); float32 the linear colours (the PFM's values).
     With ``return_stats`` returns ``(image, stats, notes)``. The GIL is released meanwhile.
+    ``legend``, ``bounding_box``, ``axes``: the CLI's annotations (pipeline/annotations.h: a
+    colour bar of each volume's array with its range and ticks, the meshes' box, an axes
+    triad), drawn on the picture; off by default, as for scene files. A picture too small for
+    its legend raises Error.
     """
     as_float = np.dtype(dtype) == np.float32
     if not as_float and np.dtype(dtype) != np.uint8:
         raise Error(f"error: dtype must be uint8 or float32, not {np.dtype(dtype).name}")
-    image, stats, notes, _ = _scene(scene)._handle.render(method or "", sort, integrator, as_float)
+    image, stats, notes, _ = _scene(scene)._handle.render(method or "", sort, integrator, as_float,
+                                                          legend, bounding_box, axes)
     return (image, stats, notes) if return_stats else image
 
 
