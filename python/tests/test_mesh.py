@@ -187,3 +187,22 @@ def test_pyvista_legacy_cells_of_mixed_sizes():
     grid.cells = grid.cells[:-1]
     with pytest.raises(tetrender.Error, match="cells has 18 entries, the counts say 19"):
         tetrender.Mesh.from_pyvista(grid)
+
+
+def test_read_a_time_step_of_a_series(ring, output_dir):
+    # A ParaView collection of two .vtu files written by meshio; step 1's temperature doubled.
+    for step in (0, 1):
+        meshio.write(output_dir / f"ring_{step}.vtu",
+                     meshio.Mesh(ring["points"], [("hexahedron", ring["hexahedra"])],
+                                 point_data={"temperature": ring["point_data"]["temperature"] * (1 + step)}))
+    (output_dir / "ring.pvd").write_text(
+        '<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n'
+        '<DataSet timestep="0.5" file="ring_0.vtu"/>\n<DataSet timestep="1.5" file="ring_1.vtu"/>\n'
+        '</Collection>\n</VTKFile>\n')
+    first = tetrender.read(output_dir / "ring.pvd")
+    second = tetrender.read(output_dir / "ring.pvd", time_step=1)
+    assert first.time_values == second.time_values == [0.5, 1.5]
+    assert (first.time_step, second.time_step) == (0, 1)
+    np.testing.assert_array_equal(second.point_data["temperature"], 2 * first.point_data["temperature"])
+    with pytest.raises(tetrender.Error, match="time step"):
+        tetrender.read(output_dir / "ring.pvd", time_step=2)

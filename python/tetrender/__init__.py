@@ -129,6 +129,8 @@ class Mesh:
         self.cell_data = {str(k): _field(v, f"cell_data['{k}']")
                           for k, v in (cell_data or {}).items()}
         self.name = name
+        self.time_values: list = []  # a file's time series: every step's time (else empty)
+        self.time_step = 0  # the step these arrays are
         self._handle: Any = None  # the library's mesh these arrays are views of, if any
         self._tets: Any = None  # the library's tetrahedral mesh, if this is one
 
@@ -144,6 +146,8 @@ class Mesh:
         mesh.point_data = handle.point_data
         mesh.cell_data = handle.cell_data
         mesh.name = name
+        mesh.time_values = list(handle.time_values)
+        mesh.time_step = handle.time_step
         mesh._handle = handle
         mesh._tets = None
         mesh._views = mesh._snapshot()
@@ -335,7 +339,8 @@ class Mesh:
 def read(path: str | os.PathLike, time_step: int | None = None) -> Mesh:
     """Reads a mesh file (io/read_mesh.h: .vtu .pvtu .vtk .exo .pvd .node/.ele .csv .mesh ...).
 
-    ``time_step`` picks a step of a time series (default the first). The Mesh's arrays are
+    ``time_step`` picks a step of a time series (default the first; ``mesh.time_values`` lists
+    every step's time, ``mesh.time_step`` says which was read). The Mesh's arrays are
     read-only views of the library's mesh (no copy). Raises Error with the reader's message.
     """
     handle = _core.read(os.fspath(path), 0 if time_step is None else int(time_step))
