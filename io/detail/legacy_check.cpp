@@ -473,7 +473,17 @@ class LegacyBody {
                          " bytes are left",
                      at());
             }
-            if (!values(times(nc, nt), type(), "FIELD array " + name)) return false;
+            const std::string type_name = type();
+            // VTK's ReadArray gives no array for a type it does not know, and its dataset
+            // readers then dereference the null field data (a segfault found by
+            // fuzz_legacy_vtk): refuse it here.
+            const std::string t = lower(type_name);
+            if (value_type(t).kind == ValueType::kOther && !starts_with(t, "string") &&
+                !starts_with(t, "utf8_string") && !starts_with(t, "variant")) {
+                fail(ErrorCode::kParse,
+                     "FIELD array " + name + ": unknown data type " + quote_word(type_name), at());
+            }
+            if (!values(times(nc, nt), type_name, "FIELD array " + name)) return false;
         }
         return true;
     }
