@@ -5,8 +5,56 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
+
+namespace {
+
+// Edit distance (insertions, deletions, substitutions, adjacent swaps) between a and b.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+    for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1,
+                                d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+            }
+        }
+    }
+    return d[a.size()][b.size()];
+}
+
+// When `word` (the first argument, not an option) names no subcommand: one line saying so,
+// with the nearest subcommand when one is within a third of its length (at least 2 edits),
+// else the list of subcommands. Empty when `word` is a subcommand.
+std::string unknown_subcommand_message(const CLI::App& app, const std::string& word) {
+    std::string names;
+    std::string nearest;
+    std::size_t best = std::string::npos;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+        const std::string& name = sub->get_name();
+        if (name == word) return {};
+        names += (names.empty() ? "" : ", ") + name;
+        const std::size_t distance = edit_distance(word, name);
+        if (distance < best) {
+            best = distance;
+            nearest = name;
+        }
+    }
+    std::string message = "tetrender: unknown subcommand '" + word + "'";
+    if (best <= std::max<std::size_t>(2, nearest.size() / 3)) {
+        return message + " (did you mean '" + nearest + "'?)";
+    }
+    return message + "; subcommands: " + names;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     using namespace tr::apps;
@@ -24,6 +72,13 @@ int main(int argc, char** argv) {
     auto compare = add_compare_command(app);
     auto advect = add_advect_command(app);
     auto spotnoise = add_spotnoise_command(app);
+    if (argc > 1 && argv[1][0] != '-') {
+        const std::string message = unknown_subcommand_message(app, argv[1]);
+        if (!message.empty()) {
+            std::fprintf(stderr, "%s\n", message.c_str());
+            return kExitUsage;
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

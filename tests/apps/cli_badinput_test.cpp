@@ -89,5 +89,36 @@ TEST(CliBadInput, MeshWithNoTetrahedronLeftIsAnError) {
     std::filesystem::remove_all(dir);
 }
 
+// A mistyped subcommand said "A subcommand is required" (issue 13): now one line naming the word
+// and the nearest subcommand (within a third of its length, at least 2 edits), or the list when
+// none is near; exit 2 (usage), nothing on stdout.
+TEST(CliBadInput, UnknownSubcommandSuggestsTheNearest) {
+    const struct {
+        std::string word;
+        std::string expected;
+    } cases[] = {
+        {"rendr", "tetrender: unknown subcommand 'rendr' (did you mean 'render'?)\n"},
+        {"inof", "tetrender: unknown subcommand 'inof' (did you mean 'info'?)\n"},
+        {"sort-chek", "tetrender: unknown subcommand 'sort-chek' (did you mean 'sort-check'?)\n"},
+        {"Render", "tetrender: unknown subcommand 'Render' (did you mean 'render'?)\n"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.word);
+        const testing::CliRun run = run_cli(shell_quote(c.word) + " mesh.vtu");
+        EXPECT_EQ(run.exit_code, 2);
+        EXPECT_EQ(run.err, c.expected);
+        EXPECT_EQ(run.out, "");
+    }
+    const testing::CliRun far = run_cli("xyzzy");
+    EXPECT_EQ(far.exit_code, 2);
+    EXPECT_EQ(far.err.find('\n'), far.err.size() - 1) << far.err;  // one line
+    EXPECT_NE(far.err.find("unknown subcommand 'xyzzy'; subcommands: info, "), std::string::npos)
+        << far.err;
+    EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;
+    // Real subcommands and options still parse.
+    EXPECT_EQ(run_cli("--version").exit_code, 0);
+    EXPECT_EQ(run_cli("render --help").exit_code, 0);
+}
+
 }  // namespace
 }  // namespace tr
