@@ -3,6 +3,7 @@
 // --repetitions R --seed S` works, converges on the projected-tetrahedra picture of the same
 // scene, and the same seed gives the same picture.
 #include <tests/apps/cli_runner.h>
+#include <tests/apps/realdata_scalars.h>
 #include <tests/support/image_check.h>
 
 #include <gtest/gtest.h>
@@ -16,31 +17,7 @@
 namespace tr {
 namespace {
 
-struct Case {
-    const char* file;
-    const char* scalar;
-};
-
-void PrintTo(const Case& c, std::ostream* os) { *os << c.file; }
-
-const Case kCases[] = {
-    {"angular_sector/AngularSector.vtk", "PointId"},
-    {"bluntfin/bluntfin.vtu", "Density"},
-    {"can/can.vtu", "EQPS"},
-    {"carotid/carotid.vtk", "scalars"},
-    {"combustor/combustor.vtu", "Density"},
-    {"cylinder_tets/CylinderLinear.vtk", "vel_norm"},
-    {"cylinder_tets_quadratic/CylinderQuadratic.vtk", "pressure"},
-    {"disk_out_ref/disk_out_ref.ex2", "Temp"},
-    {"fea_bracket/dataset.vtu", "Equivalent (von-Mises) Stress (psi)"},
-    {"iron_protein/ironProt.vtk", "scalars"},
-    {"lox_post/lox_post.vtu", "Momentum"},
-    {"mfem_escher/escher.vtu", "attribute"},
-    {"mfem_fichera_mixed/fichera-mixed.vtu", "attribute"},
-    {"office/office.binary.vtk", "scalars"},
-    {"prisms_penta_hexa/PentaHexa.vtk", "scalar2"},
-    {"tetra_mesh/tetraMesh.vtk", "scalars"},
-};
+using Case = testing::RealDataScalar;
 
 class PbvrRealData : public ::testing::TestWithParam<Case> {};
 
@@ -100,7 +77,7 @@ TEST_P(PbvrRealData, BothMethodsConvergeOnTheProjectedTetrahedraPicture) {
     std::filesystem::remove_all(dir);
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedData, PbvrRealData, ::testing::ValuesIn(kCases),
+INSTANTIATE_TEST_SUITE_P(SharedData, PbvrRealData, ::testing::ValuesIn(testing::kRealDataScalars),
                          [](const auto& info) {
                              std::string name = info.param.file;
                              return name.substr(0, name.find('/'));

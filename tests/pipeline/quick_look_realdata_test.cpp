@@ -10,6 +10,7 @@
 // values in one colour; a field dominated by a peak has almost none).
 #include <mesh/point_data.h>
 #include <tests/apps/cli_runner.h>
+#include <tests/apps/realdata_scalars.h>
 
 #include <gtest/gtest.h>
 
@@ -22,31 +23,7 @@
 namespace tr {
 namespace {
 
-struct Case {
-    const char* file;
-    const char* scalar;
-};
-
-void PrintTo(const Case& c, std::ostream* os) { *os << c.file; }
-
-const Case kCases[] = {
-    {"angular_sector/AngularSector.vtk", "PointId"},
-    {"bluntfin/bluntfin.vtu", "Density"},
-    {"can/can.vtu", "EQPS"},
-    {"carotid/carotid.vtk", "scalars"},
-    {"combustor/combustor.vtu", "Density"},
-    {"cylinder_tets/CylinderLinear.vtk", "vel_norm"},
-    {"cylinder_tets_quadratic/CylinderQuadratic.vtk", "pressure"},
-    {"disk_out_ref/disk_out_ref.ex2", "Temp"},
-    {"fea_bracket/dataset.vtu", "Equivalent (von-Mises) Stress (psi)"},
-    {"iron_protein/ironProt.vtk", "scalars"},
-    {"lox_post/lox_post.vtu", "Momentum"},
-    {"mfem_escher/escher.vtu", "attribute"},
-    {"mfem_fichera_mixed/fichera-mixed.vtu", "attribute"},
-    {"office/office.binary.vtk", "scalars"},
-    {"prisms_penta_hexa/PentaHexa.vtk", "scalar2"},
-    {"tetra_mesh/tetraMesh.vtk", "scalars"},
-};
+using Case = testing::RealDataScalar;
 
 struct Look {
     double coverage = 0, visible = 0, spread = 0;
@@ -131,7 +108,7 @@ TEST_P(QuickLookRealData, DefaultsCoverMoreOfTheFrameAndShowMoreOfTheField) {
     EXPECT_GE(new_look.spread, old_look.spread - 0.005);
 }
 
-INSTANTIATE_TEST_SUITE_P(Sets, QuickLookRealData, ::testing::ValuesIn(kCases));
+INSTANTIATE_TEST_SUITE_P(Sets, QuickLookRealData, ::testing::ValuesIn(testing::kRealDataScalars));
 
 }  // namespace
 }  // namespace tr
