@@ -11,12 +11,23 @@ namespace {
 
 constexpr int kBandRows = 16;
 constexpr double kCutQ = 9.0;  // 3 sigma
+constexpr float kCutQf = 9.0f;
 constexpr int kTableSize = 1024;
 
 struct Footprint {
     SpotEllipse e;
     float amplitude = 0;
     int x0 = 0, x1 = -1, y0 = 0, y1 = -1;  // inclusive pixel bounds
+};
+
+// What the inner loop reads of a footprint, copied into each band it meets so that a band
+// reads its spots in sequence.
+struct BandSpot {
+    double cx, cy;      // centre, pixels
+    double qa, qb, qc;  // q(dx, dy) = qa dx^2 + 2 qb dx dy + qc dy^2
+    float depth;        // the centre's ray parameter (float: compared with the opaque depth)
+    float amplitude;
+    int x0, x1, y0, y1;
 };
 
 const std::array<float, kTableSize + 1>& gaussian_table() {
@@ -94,38 +105,60 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
         f.amplitude = static_cast<float>(random.uniform() < 0.5 ? -a : a);
     });
     const int num_bands = (h + kBandRows - 1) / kBandRows;
-    std::vector<std::vector<std::uint32_t>> bins(num_bands);
+    std::vector<std::vector<BandSpot>> bins(num_bands);
     for (std::size_t i = 0; i < n; ++i) {
         const Footprint& f = prints[i];
         if (f.x1 < f.x0 || f.y1 < f.y0) continue;
-        for (int b = f.y0 / kBandRows; b <= f.y1 / kBandRows; ++b) {
-            bins[b].push_back(static_cast<std::uint32_t>(i));
-        }
+        const double il = 1.0 / (f.e.sigma_long * f.e.sigma_long);
+        const double is = 1.0 / (f.e.sigma_short * f.e.sigma_short);
+        const double ux = f.e.direction.x, uy = f.e.direction.y;
+        const BandSpot spot{f.e.centre.x,
+                            f.e.centre.y,
+                            ux * ux * il + uy * uy * is,
+                            ux * uy * (il - is),
+                            uy * uy * il + ux * ux * is,
+                            static_cast<float>(f.e.depth),
+                            f.amplitude,
+                            f.x0,
+                            f.x1,
+                            f.y0,
+                            f.y1};
+        for (int b = f.y0 / kBandRows; b <= f.y1 / kBandRows; ++b) bins[b].push_back(spot);
     }
     const auto& table = gaussian_table();
-    const double to_table = kTableSize / kCutQ;
+    const float to_table = static_cast<float>(kTableSize / kCutQ);
     const std::vector<double>* depth = options.opaque_depth;
     parallel_for(0, bins.size(), 1, [&](std::size_t band) {
         const int row0 = static_cast<int>(band) * kBandRows;
         const int row1 = std::min(row0 + kBandRows, h) - 1;
-        for (std::uint32_t i : bins[band]) {
-            const Footprint& f = prints[i];
-            const double il = 1.0 / (f.e.sigma_long * f.e.sigma_long);
-            const double is = 1.0 / (f.e.sigma_short * f.e.sigma_short);
-            const double ux = f.e.direction.x, uy = f.e.direction.y;
+        for (const BandSpot& f : bins[band]) {
+            const double qa = f.qa, qb = f.qb, qc = f.qc;
             for (int y = std::max(f.y0, row0); y <= std::min(f.y1, row1); ++y) {
-                const double dy = y + 0.5 - f.e.centre.y;
+                // Each row's span where q < 9, then q along it by forward differences (float:
+                // the table has 1024 steps).
+                const double dy = y + 0.5 - f.cy;
+                const double disc = qb * qb * dy * dy - qa * (qc * dy * dy - kCutQ);
+                if (!(disc > 0)) continue;
+                const double root = std::sqrt(disc);
+                const double left = f.cx + (-qb * dy - root) / qa - 0.5;
+                const double right = f.cx + (-qb * dy + root) / qa - 0.5;
+                const int xa = std::max(f.x0, static_cast<int>(std::ceil(left)) - 1);
+                const int xb = std::min(f.x1, static_cast<int>(std::floor(right)) + 1);
+                const double dx0 = xa + 0.5 - f.cx;
+                float q = static_cast<float>(qa * dx0 * dx0 + 2 * qb * dx0 * dy + qc * dy * dy);
+                float dq = static_cast<float>(qa * (2 * dx0 + 1) + 2 * qb * dy);
+                const float ddq = static_cast<float>(2 * qa);
                 const std::size_t row = static_cast<std::size_t>(y) * w;
-                for (int x = f.x0; x <= f.x1; ++x) {
-                    const double dx = x + 0.5 - f.e.centre.x;
-                    const double along = dx * ux + dy * uy, across = dy * ux - dx * uy;
-                    const double q = along * along * il + across * across * is;
-                    if (!(q < kCutQ)) continue;
-                    const std::size_t pixel = row + x;
-                    if (depth && !(f.e.depth < (*depth)[pixel])) continue;
-                    const float weight = table[static_cast<int>(q * to_table + 0.5)];
-                    buffers.intensity[pixel] += f.amplitude * weight;
-                    buffers.coverage[pixel] += weight;
+                float* intensity = buffers.intensity.data() + row;
+                float* coverage = buffers.coverage.data() + row;
+                const double* hidden = depth ? depth->data() + row : nullptr;
+                for (int x = xa; x <= xb; ++x, q += dq, dq += ddq) {
+                    if (!(q < kCutQf)) continue;
+                    if (hidden && !(f.depth < hidden[x])) continue;
+                    const float weight =
+                        table[static_cast<int>(std::max(q, 0.0f) * to_table + 0.5f)];
+                    intensity[x] += f.amplitude * weight;
+                    coverage[x] += weight;
                 }
             }
         }
