@@ -155,6 +155,25 @@ bool SpotNoise::seed_spot(std::size_t i, double t, int grid_cell) {
     SpotRandom random(options_.seed, i, generations_[i]);
     for (int attempt = 0; attempt < kSeedTries; ++attempt) {
         CellId cell = kNoCell;
+        if (grid_cell >= 0 && box_sampling_[grid_cell]) {
+            // A uniform point of the cube, located from one of its tets.
+            const int gx = grid_cell % grid_n_, gy = grid_cell / grid_n_ % grid_n_,
+                      gz = grid_cell / grid_n_ / grid_n_;
+            const Vec3 p =
+                grid_lo_ + cell_size_ * Vec3(gx + random.uniform(), gy + random.uniform(),
+                                             gz + random.uniform());
+            CellId hint = cell_tets_[cell_start_[grid_cell]];
+            const auto d = distance_to_surface(p, hint);
+            if (!d || !(*d < options_.band)) continue;
+            CellId flow_hint = hint;
+            const auto v = flow_->at(p, t, flow_hint);
+            if (!v) continue;
+            positions_[i] = p;
+            velocities_[i] = *v;
+            hints_[i] = hint;
+            flow_hints_[i] = flow_hint;
+            return true;
+        }
         if (grid_cell >= 0) {
             const double u = random.uniform();
             const auto b = cell_cdf_.begin() + cell_start_[grid_cell];
@@ -327,6 +346,7 @@ void SpotNoise::build_grid() {
         }
     }
     cell_start_.assign(cells + 1, 0);
+    box_sampling_.assign(cells, 0);
     cell_tets_.clear();
     cell_cdf_.clear();
     for (std::size_t c = 0; c < cells; ++c) {
@@ -338,6 +358,9 @@ void SpotNoise::build_grid() {
             cell_cdf_.push_back(sum);
         }
         for (std::size_t k = first; k < cell_cdf_.size(); ++k) cell_cdf_[k] /= sum;
+        // Points drawn from the cube itself when its tets are much bigger than it (a try
+        // locates the point, about twice a tet draw's cost).
+        box_sampling_[c] = sum > 2 * cell_size_ * cell_size_ * cell_size_;
         cell_start_[c + 1] = static_cast<std::uint32_t>(cell_tets_.size());
     }
     // The band's volume per cube, by uniform samples in chunks of their own generators

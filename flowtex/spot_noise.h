@@ -22,8 +22,9 @@
 // to reseed go to the cubes with the largest deficits (target minus the spots now in them;
 // water-filling: each cube above a common level L gets its deficit less L, the rest spread
 // evenly over the cubes at L) and are placed uniformly by volume in the band within their
-// cube. Spots converging somewhere (compressible flow) are thinned there by
-// the lifetime: those dying in a cube over its target are placed elsewhere. Each spot draws its
+// cube (by rejection from the band tets meeting it, or from the cube itself where those tets
+// are more than twice its volume). Spots converging somewhere (compressible flow) are thinned there
+// by the lifetime: those dying in a cube over its target are placed elsewhere. Each spot draws its
 // random numbers from (seed, spot index, generation): the same seed gives the same spots
 // whatever the thread count.
 
@@ -136,6 +137,7 @@ class SpotNoise {
     std::vector<std::uint32_t> cell_start_;
     std::vector<CellId> cell_tets_;
     std::vector<double> cell_cdf_;
+    std::vector<std::uint8_t> box_sampling_;  // per cube: draw from the cube, not its tets
     std::vector<double> target_;  // expected spots per cube: count x its share of the band
     std::vector<int> reseed_cells_;
     std::size_t reseeded_ = 0;
