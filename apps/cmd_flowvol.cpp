@@ -7,6 +7,7 @@
 #include <project/scene.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -31,6 +32,18 @@ struct FlowvolArgs {
     std::string size = "800x600";
 };
 
+// A number > 0 and finite; the message says so in words (CLI::PositiveNumber printed its
+// range with DBL_MAX's 300 digits).
+const CLI::Validator kPositive(
+    [](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !(v > 0) || !std::isfinite(v)) {
+            return "must be a finite number > 0, not '" + text + "'";
+        }
+        return {};
+    },
+    "POSITIVE");
+
 int run_flowvol(FlowvolArgs args) {
     int width = 0, height = 0;
     if (!parse_image_size(args.size, width, height)) {
@@ -42,6 +55,17 @@ int run_flowvol(FlowvolArgs args) {
     spec.seed_width = args.seed_size[0];
     spec.seed_height = args.seed_size[1];
     if (!args.seed_normal.empty()) {
+        const auto& n = args.seed_normal;
+        if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2]) ||
+            (n[0] == 0 && n[1] == 0 && n[2] == 0)) {
+            std::ostringstream given;
+            given << n[0] << "," << n[1] << "," << n[2];
+            return report_usage(make_error(ErrorCode::kInvalidArgument,
+                                           "--seed-normal must be a finite non-zero vector x,y,z, "
+                                           "not " +
+                                               given.str(),
+                                           ""));
+        }
         spec.seed_normal = Vec3(args.seed_normal[0], args.seed_normal[1], args.seed_normal[2]);
     }
     if (const Status ok = check_output_path(args.output, {".png", ".pfm"}); !ok.ok()) {
@@ -114,7 +138,7 @@ std::function<int()> add_flowvol_command(CLI::App& app) {
         ->required()
         ->expected(2)
         ->delimiter(',')
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_option("--seed-normal", args->seed_normal,
                     "Dye polygon normal x,y,z (default: the flow direction at its centre)")
         ->expected(3)
@@ -124,8 +148,7 @@ std::function<int()> add_flowvol_command(CLI::App& app) {
         ->check(CLI::Range(1, 4096));
     cmd->add_option("--steps", args->spec.steps, "Layers (default 50)")
         ->check(CLI::Range(1, 100000));
-    cmd->add_option("--dt", args->spec.dt, "Time per layer (default 0.05)")
-        ->check(CLI::PositiveNumber);
+    cmd->add_option("--dt", args->spec.dt, "Time per layer (default 0.05)")->check(kPositive);
     cmd->add_option("--split-threshold", args->spec.split_threshold,
                     "Split front edges longer than this many seed spacings (default 2; 0: off)")
         ->check(CLI::Number);

@@ -88,7 +88,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        app.exit(e);
+        // One line (CLI11's own exit() adds "Run with --help for more information.").
+        std::fprintf(stderr, "tetrender: %s\n", e.what());
         return kExitUsage;
     }
     try {

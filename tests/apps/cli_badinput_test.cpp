@@ -120,5 +120,42 @@ TEST(CliBadInput, UnknownSubcommandSuggestsTheNearest) {
     EXPECT_EQ(run_cli("render --help").exit_code, 0);
 }
 
+// flowvol's numbers (issue 13): --dt 0 printed its allowed range with DBL_MAX's 300 digits, on
+// two lines; --seed-normal 0,0,0 said "no flow direction at the seed's centre ... give the
+// polygon's normal" although one was given. Each is now one line saying what is wrong, exit 2,
+// checked before the mesh is read (the mesh here does not exist) and with no output written.
+TEST(CliBadInput, FlowvolNumbersSayWhatIsWrong) {
+    const std::string dir = make_temp_dir();
+    const std::string png = dir + "/out.png";
+    const std::string base = "flowvol " + shell_quote(dir + "/missing.vtu") +
+                             " --vectors V --seed-center 0,0,0 --seed-size 1,1 -o " +
+                             shell_quote(png) + " ";
+    const struct {
+        std::string args;
+        std::string expected;
+    } cases[] = {
+        {"--dt 0", "tetrender: --dt: must be a finite number > 0, not '0'\n"},
+        {"--dt -1e-9", "tetrender: --dt: must be a finite number > 0, not '-1e-9'\n"},
+        {"--dt inf", "tetrender: --dt: must be a finite number > 0, not 'inf'\n"},
+        {"--seed-size 0,1", "tetrender: --seed-size: must be a finite number > 0, not '0'\n"},
+        {"--seed-normal 0,0,0",
+         "tetrender: error: --seed-normal must be a finite non-zero vector x,y,z, not 0,0,0\n"},
+        {"--seed-normal nan,0,1",
+         "tetrender: error: --seed-normal must be a finite non-zero vector x,y,z, not nan,0,1\n"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.args);
+        const testing::CliRun run = run_cli(base + c.args);
+        EXPECT_EQ(run.exit_code, 2);
+        EXPECT_EQ(run.err, c.expected);
+        EXPECT_FALSE(std::filesystem::exists(png));
+    }
+    // A good normal gets past these checks to the mesh, which is missing.
+    const testing::CliRun good = run_cli(base + "--seed-normal 0,0,1 --dt 0.01");
+    EXPECT_EQ(good.exit_code, 1) << good.err;
+    EXPECT_NE(good.err.find("missing.vtu"), std::string::npos) << good.err;
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace tr
