@@ -366,14 +366,15 @@ void SpotNoise::build_grid() {
     // The band's volume per cube, by uniform samples in chunks of their own generators
     // (summed in chunk order: the same for any thread count).
     const std::size_t samples = std::clamp<std::size_t>(16 * positions_.size(), 1 << 18, 1 << 22);
-    constexpr std::size_t kChunk = 1 << 14;
-    const std::size_t chunks = (samples + kChunk - 1) / kChunk;
+    // 16 chunks whatever the count: their hit counts take 16 x cubes x 4 bytes.
+    constexpr std::size_t chunks = 16;
+    const std::size_t chunk_samples = samples / chunks;
     std::vector<std::vector<std::uint32_t>> hits(chunks);
     parallel_for(0, chunks, 1, [&](std::size_t k) {
         SpotRandom random(options_.seed ^ 0x7a11, k, ~std::uint64_t{0});
         std::vector<std::uint32_t>& h = hits[k];
         h.assign(cells, 0);
-        for (std::size_t s = 0; s < kChunk; ++s) {
+        for (std::size_t s = 0; s < chunk_samples; ++s) {
             const auto sample = sample_band_tet(random);
             if (sample.in_band) ++h[cell_of(sample.point)];
         }

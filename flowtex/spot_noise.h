@@ -55,7 +55,8 @@ struct SpotNoiseOptions {
     std::uint64_t seed = 0x5b07;
 };
 
-inline constexpr std::size_t kMaxSpots = 50'000'000;
+// About 70 bytes a spot: 10^7 spots take 0.7 GB.
+inline constexpr std::size_t kMaxSpots = 10'000'000;
 
 class SpotNoise {
   public:
