@@ -58,7 +58,7 @@ const SphereDomain& sphere_domain() {
 }
 
 // Arguments: spots, image side, part (0 advance + render, 1 advance only, 2 render only),
-// threads.
+// threads, the spots' sigma in tenths of a pixel.
 void BM_SpotNoiseFrame(benchmark::State& state) {
     const SphereDomain& d = sphere_domain();
     const int size = static_cast<int>(state.range(1));
@@ -75,6 +75,7 @@ void BM_SpotNoiseFrame(benchmark::State& state) {
     const CameraFrame frame(framing_camera(d.mesh.bounds(), Vec3(1, -1.2, 0.8)), size, size);
     SpotRasterOptions raster;
     raster.dt = options.dt;
+    raster.sigma_px = static_cast<double>(state.range(4)) / 10.0;
     SpotBuffers buffers;
     Image image;
     std::size_t reseeded = 0;
@@ -96,9 +97,10 @@ void BM_SpotNoiseFrame(benchmark::State& state) {
     set_thread_count(0);
 }
 BENCHMARK(BM_SpotNoiseFrame)
-    ->ArgNames({"spots", "px", "part", "threads"})
-    ->ArgsProduct({{100000}, {512}, {0, 1, 2}, {1, 2}})
-    ->Args({2000, 64, 0, 2})
+    ->ArgNames({"spots", "px", "part", "threads", "sigma10"})
+    ->ArgsProduct({{100000}, {512}, {0, 1, 2}, {1, 2}, {15}})
+    ->Args({100000, 512, 2, 1, 10})
+    ->Args({2000, 64, 0, 2, 15})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

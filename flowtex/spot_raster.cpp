@@ -133,17 +133,18 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
         const int row1 = std::min(row0 + kBandRows, h) - 1;
         for (const BandSpot& f : bins[band]) {
             const double qa = f.qa, qb = f.qb, qc = f.qc;
+            // The span of a row: q(dx) = 9 at dx = (-qb dy -+ sqrt(9 qa - det dy^2)) / qa, det =
+            // qa qc - qb^2. Truncation toward zero keeps the span conservative (the q test below
+            // is exact), and is cheaper than floor and ceil.
+            const double det = qa * qc - qb * qb, inv_qa = 1.0 / qa;
             for (int y = std::max(f.y0, row0); y <= std::min(f.y1, row1); ++y) {
-                // Each row's span where q < 9, then q along it by forward differences (float:
-                // the table has 1024 steps).
                 const double dy = y + 0.5 - f.cy;
-                const double disc = qb * qb * dy * dy - qa * (qc * dy * dy - kCutQ);
+                const double disc = kCutQ * qa - det * dy * dy;
                 if (!(disc > 0)) continue;
-                const double root = std::sqrt(disc);
-                const double left = f.cx + (-qb * dy - root) / qa - 0.5;
-                const double right = f.cx + (-qb * dy + root) / qa - 0.5;
-                const int xa = std::max(f.x0, static_cast<int>(std::ceil(left)) - 1);
-                const int xb = std::min(f.x1, static_cast<int>(std::floor(right)) + 1);
+                const double half = std::sqrt(disc) * inv_qa;
+                const double mid = f.cx - qb * dy * inv_qa - 0.5;
+                const int xa = std::max(f.x0, static_cast<int>(mid - half));
+                const int xb = std::min(f.x1, static_cast<int>(mid + half) + 1);
                 const double dx0 = xa + 0.5 - f.cx;
                 float q = static_cast<float>(qa * dx0 * dx0 + 2 * qb * dx0 * dy + qc * dy * dy);
                 float dq = static_cast<float>(qa * (2 * dx0 + 1) + 2 * qb * dy);
