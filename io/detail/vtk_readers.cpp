@@ -50,8 +50,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace tr::io_detail {
@@ -392,6 +397,93 @@ std::string first_array_type(const std::string& text, const std::string& section
     return array == std::string::npos ? std::string() : xml_attribute(text, array, "type");
 }
 
+// The last value of each piece's Cells "offsets" array, where it can be read cheaply (ASCII, or
+// raw appended data without compression; base64 and compressed arrays are not decoded), checked
+// against `limit`: VTK's XML reader allocates the connectivity for that value before checking
+// it (a last offset of 1.4e16 asked malloc for 8.8e18 bytes, one of 2^63 - 1 overflowed the size
+// and segfaulted; found by fuzz_vtu).
+void check_cell_offsets(const fs::path& path, const std::string& head, std::uintmax_t size,
+                        double limit) {
+    const std::string where = path.string();
+    const std::size_t root = head.find("<VTKFile");
+    const bool compressed = !xml_attribute(head, root, "compressor").empty();
+    const bool big_endian = xml_attribute(head, root, "byte_order") == "BigEndian";
+    const std::size_t header_size = xml_attribute(head, root, "header_type") == "UInt64" ? 8 : 4;
+    const auto check = [&](double last) {
+        if (!(last >= 0 && last <= limit)) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.17g", last);
+            fail(ErrorCode::kParse,
+                 std::string("Cells: the last offset ") + text +
+                     " is not plausible for a file of " + std::to_string(size) + " bytes",
+                 where);
+        }
+    };
+    const auto unsigned_at = [&](std::uintmax_t pos,
+                                 std::size_t n) -> std::optional<std::uint64_t> {
+        if (pos > size || n > size - pos) return std::nullopt;
+        std::ifstream in(path, std::ios::binary);
+        in.seekg(static_cast<std::streamoff>(pos));
+        unsigned char b[8] = {};
+        if (!in.read(reinterpret_cast<char*>(b), static_cast<std::streamsize>(n)))
+            return std::nullopt;
+        std::uint64_t v = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t k = big_endian ? i : n - 1 - i;
+            v = (v << 8) | b[k];
+        }
+        return v;
+    };
+    for (std::size_t cells = head.find("<Cells"); cells != std::string::npos;
+         cells = head.find("<Cells", cells + 1)) {
+        const std::size_t cells_end = head.find("</Cells>", cells);
+        if (cells_end == std::string::npos) return;
+        std::size_t array = head.find("<DataArray", cells);
+        while (array < cells_end && xml_attribute(head, array, "Name") != "offsets") {
+            array = head.find("<DataArray", array + 1);
+        }
+        if (array >= cells_end) continue;
+        const std::string type = xml_attribute(head, array, "type");
+        const bool is_signed = type.rfind("Int", 0) == 0;
+        std::size_t type_size = 0;
+        for (const int bits : {8, 16, 32, 64}) {
+            if (type == "Int" + std::to_string(bits) || type == "UInt" + std::to_string(bits))
+                type_size = static_cast<std::size_t>(bits / 8);
+        }
+        const std::string format = xml_attribute(head, array, "format");
+        const std::size_t tag_end = head.find('>', array);
+        if (format == "ascii" && tag_end != std::string::npos && head[tag_end - 1] != '/') {
+            const std::size_t close = head.find("</DataArray>", tag_end);
+            if (close == std::string::npos) continue;
+            std::istringstream values(head.substr(tag_end + 1, close - tag_end - 1));
+            std::string word, last;
+            while (values >> word) last = word;
+            if (!last.empty()) check(std::strtod(last.c_str(), nullptr));
+        } else if (format == "appended" && !compressed && type_size != 0) {
+            const std::size_t appended = head.find("<AppendedData");
+            if (appended == std::string::npos || xml_attribute(head, appended, "encoding") != "raw")
+                continue;
+            const std::size_t underscore = head.find('_', head.find('>', appended));
+            if (underscore == std::string::npos) continue;
+            const std::uintmax_t block =
+                underscore + 1 +
+                std::strtoull(xml_attribute(head, array, "offset").c_str(), nullptr, 10);
+            const auto bytes = unsigned_at(block, header_size);
+            if (!bytes || *bytes < type_size) continue;
+            const auto raw =
+                unsigned_at(block + header_size + (*bytes / type_size - 1) * type_size, type_size);
+            if (!raw) continue;  // past the end: VTK says so
+            double last = static_cast<double>(*raw);
+            if (is_signed && type_size < 8 && (*raw >> (8 * type_size - 1)) != 0) {
+                last -= std::ldexp(1.0, static_cast<int>(8 * type_size));
+            } else if (is_signed && type_size == 8) {
+                last = static_cast<double>(static_cast<std::int64_t>(*raw));
+            }
+            check(last);
+        }
+    }
+}
+
 // Checks that a file looks like a VTK XML file of `type`; the name of the extension for errors.
 void check_vtk_xml(const fs::path& path, const std::string& type, const std::string& ext) {
     const std::string where = path.string();
@@ -451,6 +543,7 @@ void check_vtk_xml(const fs::path& path, const std::string& type, const std::str
              "fixed corners (tets, hexahedra, wedges, pyramids, ...)",
              where);
     }
+    if (type == "UnstructuredGrid") check_cell_offsets(path, piece_head, size, limit);
     for (std::size_t pos = piece_head.find("<Piece"); pos != std::string::npos;
          pos = piece_head.find("<Piece", pos + 1)) {
         for (const char* attr : {"NumberOfPoints", "NumberOfCells", "NumberOfVerts",

@@ -59,17 +59,28 @@ TEST(IoFuzzFindings, HugeCellOffsetIsAnError) {
     EXPECT_NEAR(test::total_abs_volume(ok.value()), 1.0 / 6, 1e-12);
     // fuzz_vtu, smoke run: appended blocks shifted so that the offsets array read XML text
     // ('offset="2' as an Int64) made VTK allocate the connectivity for that last offset: malloc
-    // of 8.8e18 bytes (ASan: allocation-size-too-big). A normal build says "out of memory while
-    // reading" (measured): an error, one line, though it blames memory for a 700-byte file.
-    // Open (docs/fuzzing.md): a last offset of 2^63 - 1 still segfaults VTK's XML reader (the
-    // allocation size overflows); offsets are not pre-checked before VTK reads them.
-    for (std::int64_t header :
-         {std::int64_t{0x32223d74657366}, std::int64_t{-1}, std::int64_t{5}}) {
+    // of 8.8e18 bytes (ASan: allocation-size-too-big; a normal build said "out of memory while
+    // reading"); 2^63 - 1 overflowed the size and segfaulted VTK. The last offset is now checked
+    // before VTK reads the file (measured: "Cells: the last offset 14111396176687974 is not
+    // plausible for a file of 784 bytes"; -1 the same). 5 is VTK's own error (connectivity too
+    // short).
+    for (std::int64_t header : {std::int64_t{0x32223d74657366}, std::int64_t{0x7fffffffffffffff},
+                                std::int64_t{-1}, std::int64_t{5}}) {
         SCOPED_TRACE(header);
         const auto path = dir / ("bad_" + std::to_string(header) + ".vtu");
         write_file(path, appended_tet(header));
-        expect_error(read_mesh(path), path);
+        const std::string message = expect_error(read_mesh(path), path);
+        if (header != 5) {
+            EXPECT_NE(message.find("Cells: the last offset"), std::string::npos) << message;
+        }
     }
+    // The same checks on an ASCII offsets array.
+    std::string ascii = test::vtu_ascii(test::mixed_mesh(), {}, {});
+    const std::size_t close = ascii.find("</DataArray>", ascii.find("Name=\"offsets\""));
+    ascii.insert(close, " 9223372036854775807 ");
+    write_file(dir / "ascii.vtu", ascii);
+    const std::string message = expect_error(read_mesh(dir / "ascii.vtu"), dir / "ascii.vtu");
+    EXPECT_NE(message.find("Cells: the last offset"), std::string::npos) << message;
 }
 
 // fuzz_legacy_vtk, after 32k runs: a dataset-level FIELD whose array has a type VTK does not
