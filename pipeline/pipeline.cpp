@@ -136,6 +136,7 @@ Result<RenderResult> Pipeline::render(const Scene& scene, const RenderOptions& o
         // A volume out of view draws nothing: say so (the picture is right, but rarely meant).
         if (!scene.flow_volume) {
             const CameraFrame frame(scene.camera, scene.width, scene.height);
+            bool any_out = false;
             for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
                 auto loaded = mesh(scene.volumes[v]);  // kept from the render: no reload
                 if (!loaded.ok() || (*loaded)->tets.num_real_tets() == 0) continue;
@@ -145,7 +146,20 @@ Result<RenderResult> Pipeline::render(const Scene& scene, const RenderOptions& o
                                                         scene.volumes[v].mesh.string() + ")"
                                                   : scene.volumes[v].mesh.string()) +
                         ": no cell is in view of the camera; nothing of it is drawn");
+                    any_out = true;
                 }
+            }
+            // Every pixel the background (none off by half an 8-bit level) while the volumes are
+            // in view: the transfer function shows nothing of these values.
+            const Vec3f background(scene.background);
+            const bool empty = std::all_of(
+                result.image.pixels.begin(), result.image.pixels.end(), [&](const Vec3f& p) {
+                    return glm::all(glm::lessThan(glm::abs(p - background), Vec3f(0.5f / 255.0f)));
+                });
+            if (empty && !any_out && !result.image.pixels.empty()) {
+                result.notes.push_back(
+                    "the picture is empty: every pixel is the background (the transfer "
+                    "function's opacity is zero or too small over the values in view)");
             }
         }
         return result;

@@ -246,6 +246,19 @@ TEST(CliQuickLook, AzimuthTurnsTheViewAboutTheUpAxis) {
     std::filesystem::remove_all(dir);
 }
 
+TEST(CliQuickLook, AnEmptyPictureIsSaid) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = shell_quote(write_block(dir));
+    const std::string out = " -o " + shell_quote(dir + "/x.png");
+    auto run = run_cli("render " + mesh + " --scalar t --opacity-curve 0:0,1:0" + out);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.err.find("note: the picture is empty"), std::string::npos) << run.err;
+    run = run_cli("render " + mesh + " --scalar t" + out);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(run.err.find("empty"), std::string::npos) << run.err;
+    std::filesystem::remove_all(dir);
+}
+
 TEST(CliQuickLook, BadOptionsAreOneLineErrors) {
     const std::string dir = make_temp_dir();
     const std::string mesh = shell_quote(write_block(dir));
