@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <optional>
 #include <pipeline/loaded_mesh.h>
+#include <pipeline/movie.h>
 
 namespace tr::viewer {
 
@@ -17,7 +18,8 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
     const int width = vs.scene.width, height = vs.scene.height;
     const Camera& home = vs.scene.camera;
     const int frames = std::max(options.frames, 1);
-    const Vec3 axis = CameraFrame(home, width, height).up();
+    // The scene's up axis, not the picture's: a camera looking down turns as on a turntable.
+    const Vec3 axis = glm::normalize(home.view_up);
     FlowControls* flow = view.flow_shown() ? view.flow() : nullptr;
     // Particle-based: each frame waits for its view's first batch, the last for all of them.
     const bool particles = view.particle_mode() && !flow && !view.fused();
@@ -76,6 +78,11 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
             panel->draw(camera);
         }
         frame_ms += ms_since(frame_start);
+        if (!options.frames_dir.empty()) {
+            const Status frame_written =
+                write_image(view.active().read_image(), frame_path(options.frames_dir, i));
+            if (!frame_written.ok()) return apps::report_error(frame_written.error());
+        }
     }
     const Status written = write_image(view.active().read_image(), options.screenshot);
     if (!written.ok()) return apps::report_error(written.error());

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,7 @@ struct Args {
     std::string input;
     std::string scalar;
     std::string screenshot;
+    std::string frames_dir;
     int frames = 1;
     double orbit = 0;
     std::string size;
@@ -141,6 +143,14 @@ int run(const Args& args) {
         }
     }
     const bool headless = !args.screenshot.empty();
+    if (!args.frames_dir.empty()) {
+        std::error_code made;
+        std::filesystem::create_directories(args.frames_dir, made);
+        if (!headless || made || !std::filesystem::is_directory(args.frames_dir)) {
+            return fail(headless ? args.frames_dir + ": cannot make the frames folder"
+                                 : "--frames-dir writes the frames of a --screenshot orbit");
+        }
+    }
 
     auto loaded = load_viewer_scene(options);
     if (!loaded.ok()) return apps::report_error(loaded.error());
@@ -238,8 +248,9 @@ int run(const Args& args) {
                 panel->set_legend(args.legend == "on");
             }
             if (headless) {
-                code = run_headless_orbit(view, panel ? &*panel : nullptr,
-                                          {args.screenshot, args.frames, args.orbit});
+                code =
+                    run_headless_orbit(view, panel ? &*panel : nullptr,
+                                       {args.screenshot, args.frames, args.orbit, args.frames_dir});
             } else {
                 code = run_interactive(window, view, *panel, args.exit_after_frames);
             }
@@ -273,7 +284,11 @@ int main(int argc, char** argv) {
     app.add_option("--frames", args.frames, "Headless: frames along the orbit (default 1)")
         ->check(CLI::Range(1, 100000));
     app.add_option("--orbit", args.orbit,
-                   "Headless: degrees the camera turns about the view's up axis over the frames");
+                   "Headless: degrees the camera turns about the scene's up axis (view_up) over "
+                   "the frames, without rolling");
+    app.add_option("--frames-dir", args.frames_dir,
+                   "Headless: also write every frame as DIR/frame_0000.png, ... (a movie: "
+                   "ffmpeg -i DIR/frame_%04d.png out.mp4)");
     app.add_option("--size", args.size, "Window / image size WxH (default 960x600 or the scene's)");
     app.add_option("--integrator", args.integrator, "exp-texture (default) or preintegrated");
     app.add_option("--sort", args.sort, "auto (default), mpvo, mpvonc, exact, centroid");

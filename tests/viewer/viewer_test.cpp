@@ -148,6 +148,40 @@ TEST(Viewer, ScriptedOrbitAndTransferFunctionChange) {
     std::filesystem::remove_all(t.dir);
 }
 
+TEST(Viewer, AnOrbitWritesEveryFrameAndTurnsAboutTheUpAxis) {
+    if (!require_xvfb()) GTEST_SKIP() << "no xvfb-run";
+    const TestScene t = make_test_scene(6);
+    const std::string scene = shell_quote(t.scene);
+    const std::string frames = t.dir + "/frames";
+    const std::string last = t.dir + "/last.png";
+    auto run = run_viewer(scene + " --frames 3 --orbit 360 --frames-dir " + shell_quote(frames) +
+                          " --screenshot " + shell_quote(last));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const auto bytes = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_TRUE(std::filesystem::exists(frames + "/frame_000" + std::to_string(k) + ".png"));
+    }
+    EXPECT_FALSE(std::filesystem::exists(frames + "/frame_0003.png"));
+    EXPECT_EQ(bytes(frames + "/frame_0002.png"), bytes(last));
+    // A whole turn about the scene's up axis ends where it began (no roll, no drift).
+    const std::string start = t.dir + "/start.pfm", turned = t.dir + "/turned.pfm";
+    run = run_viewer(scene + " --screenshot " + shell_quote(start));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    run = run_viewer(scene + " --frames 1 --orbit 360 --screenshot " + shell_quote(turned));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(bytes(frames + "/frame_0000.png"), bytes(last));
+    // Measured: 168 dB, equal to float rounding (cos 360 degrees is not exactly 1).
+    EXPECT_TRUE(images_match(read_pfm(turned), read_pfm(start), kBackground, {140.0, 1e-6},
+                             "viewer_full_turn"));
+    // --frames-dir belongs to a headless orbit.
+    run = run_viewer(scene + " --frames-dir " + shell_quote(frames));
+    EXPECT_NE(run.exit_code, 0);
+    std::filesystem::remove_all(t.dir);
+}
+
 // The sort worker answers each request with that view's order (a permutation of the real
 // cells, the same as a direct sort), keeps only the newest pending request, and never hands out
 // an order older than one already seen.
