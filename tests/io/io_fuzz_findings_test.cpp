@@ -120,5 +120,38 @@ TEST(IoFuzzFindings, FieldArrayOfUnknownTypeIsAnError) {
     EXPECT_EQ(ok.value().num_cells(), 2u);
 }
 
+// fuzz_legacy_vtk, second run: "POINTS 9utf8_string float" reads as 9 points of type
+// utf8_string; VTK's ReadArray sized a string array from it (ASan: 141 TB requested; a normal
+// build gave VTK's many-word "returned failure for request" error). Coordinates must be numbers.
+TEST(IoFuzzFindings, CoordinatesOfAStringTypeAreAnError) {
+    TempDir dir;
+    test::LegacyLayout layout;
+    layout.header = "# vtk DataFile Version 4.2\nfuzz\nASCII\n";
+    const std::string good = test::legacy_unstructured(layout);
+    const std::string points = "POINTS 12 float";
+    const std::size_t at = good.find(points);
+    ASSERT_NE(at, std::string::npos);
+    for (const std::string type : {"utf8_string", "string", "variant"}) {
+        SCOPED_TRACE(type);
+        std::string bad = good;
+        bad.replace(at, points.size(), "POINTS 12" + type + " float");
+        const auto path = dir / ("points_" + type + ".vtk");
+        write_file(path, bad);
+        const std::string message = expect_error(read_mesh(path), path);
+        EXPECT_NE(message.find("POINTS: data type '" + type + "' is not a number type"),
+                  std::string::npos)
+            << message;
+    }
+    const std::string grid =
+        "# vtk DataFile Version 3.0\nfuzz\nASCII\nDATASET RECTILINEAR_GRID\n"
+        "DIMENSIONS 2 2 2\nX_COORDINATES 2 string\n0 1\n"
+        "Y_COORDINATES 2 float\n0 1\nZ_COORDINATES 2 float\n0 1\n";
+    write_file(dir / "rect.vtk", grid);
+    const std::string message = expect_error(read_mesh(dir / "rect.vtk"), dir / "rect.vtk");
+    EXPECT_NE(message.find("X_COORDINATES: data type 'string' is not a number type"),
+              std::string::npos)
+        << message;
+}
+
 }  // namespace
 }  // namespace tr
