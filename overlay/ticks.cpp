@@ -2,6 +2,8 @@
 #include <cmath>
 #include <cstdio>
 #include <overlay/ticks.h>
+#include <string>
+#include <string_view>
 
 namespace tr {
 namespace {
@@ -100,17 +102,20 @@ std::string tick_label(double value, double step) {
     } else {
         std::snprintf(buffer, sizeof buffer, "%.3g", value);
     }
-    std::string s = buffer;
-    if (s.find_first_not_of("-0.") == std::string::npos && s[0] == '-') s.erase(0, 1);
-    return s;
+    // "-0.00" reads as 0 (the text after the sign; not erase(0, 1), which GCC 12 at -O2 with
+    // the sanitizers flags as an overlapping copy, -Werror=restrict).
+    const char* text = buffer;
+    if (buffer[0] == '-' &&
+        std::string_view(buffer).find_first_not_of("-0.") == std::string::npos) {
+        ++text;
+    }
+    return std::string(text);
 }
 
 std::string range_label(double value) {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%.4g", value);
-    std::string s = buffer;
-    if (s == "-0") s = "0";
-    return s;
+    return std::string_view(buffer) == "-0" ? std::string("0") : std::string(buffer);
 }
 
 }  // namespace tr
