@@ -14,6 +14,7 @@
 #include <optional>
 #include <pipeline/annotations.h>
 #include <pipeline/movie.h>
+#include <pipeline/paraview_camera.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
 #include <unistd.h>
@@ -50,6 +51,8 @@ struct RenderArgs {
     double azimuth = 0, elevation = 0, zoom = 1;
     std::vector<double> camera_position, camera_focal_point, camera_view_up;
     std::optional<double> camera_view_angle;
+    std::string camera_file;        // a ParaView .pvcc camera to render from
+    std::string write_camera_file;  // the camera used, as a .pvcc
     bool fit_bounds = false;
     // Annotations and colour maps.
     std::string legend = "auto";  // auto: on in quick mode, off for scene files
@@ -174,6 +177,9 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
         if (args.camera_view_angle) camera.view_angle = *args.camera_view_angle;
         TR_TRY_STATUS(check_camera(camera));
         options.camera = camera;
+    }
+    if (!args.camera_file.empty()) {
+        TR_TRY(options.camera, read_paraview_camera(args.camera_file));
     }
     SceneVolume volume;
     volume.mesh = std::filesystem::absolute(args.input);
@@ -365,6 +371,17 @@ int run_render(const RenderArgs& args) {
             return report_usage(ok.error());
         }
     }
+    if (!args.write_camera_file.empty()) {
+        if (const Status ok = check_output_path(args.write_camera_file, {".pvcc"}); !ok.ok()) {
+            return report_usage(ok.error());
+        }
+    }
+    if (!args.camera_file.empty() && !args.camera_position.empty()) {
+        std::fprintf(stderr,
+                     "tetrender: --camera takes a .pvcc file; give it or the "
+                     "--camera-* values, not both\n");
+        return kExitUsage;
+    }
     if (args.threads > 0) set_thread_count(args.threads);
 
     PipelineOptions pipeline_options;
@@ -413,6 +430,15 @@ int run_render(const RenderArgs& args) {
         }
         if (args.sheet_buffer) method.options["compositing"] = std::string("sheet-buffer");
         scene.method = method;
+    }
+    if (scene_mode && !args.camera_file.empty()) {
+        auto camera = read_paraview_camera(args.camera_file);
+        if (!camera.ok()) return report_error(camera.error());
+        scene.camera = *camera;
+    }
+    if (!args.write_camera_file.empty()) {
+        const Status written = write_paraview_camera(scene.camera, args.write_camera_file);
+        if (!written.ok()) return report_error(written.error());
     }
     if (!scene_mode && !args.write_scene_path.empty()) {
         const Status written = write_scene(scene, args.write_scene_path);
@@ -556,6 +582,11 @@ std::function<int()> add_render_command(CLI::App& app) {
                     "--camera-focal-point, --camera-view-up, --camera-view-angle)")
         ->expected(3)
         ->delimiter(',');
+    cmd->add_option("--camera", args->camera_file,
+                    "Render from a camera ParaView saved (.pvcc: Save Camera), in quick mode and "
+                    "for a scene file");
+    cmd->add_option("--write-camera", args->write_camera_file,
+                    "Write the camera used as a ParaView .pvcc file (Load Camera)");
     cmd->add_option("--camera-focal-point", args->camera_focal_point, "Quick mode: x,y,z")
         ->expected(3)
         ->delimiter(',');

@@ -236,6 +236,30 @@ TEST(CliQuickLook, AWrittenColormapAndAGivenCameraGiveThePictureBack) {
     std::filesystem::remove_all(dir);
 }
 
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(CliQuickLook, AParaviewCameraFileGivesTheViewBack) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = shell_quote(write_block(dir));
+    const std::string camera = shell_quote(dir + "/view.pvcc");
+    auto run = run_cli("render " + mesh + " --scalar t --size 64x48 --azimuth 30 -o " +
+                       shell_quote(dir + "/a.png") + " --write-camera " + camera);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    run = run_cli("render " + mesh + " --scalar t --size 64x48 --camera " + camera + " -o " +
+                  shell_quote(dir + "/b.png"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(slurp(dir + "/a.png"), slurp(dir + "/b.png"));
+    expect_one_line_error(
+        run_cli("render " + mesh + " --scalar t --camera " + shell_quote(dir + "/a.png") + " -o " +
+                shell_quote(dir + "/c.png")),
+        1, "not a ParaView camera file");
+    EXPECT_FALSE(std::filesystem::exists(dir + "/c.png"));
+    std::filesystem::remove_all(dir);
+}
+
 TEST(CliQuickLook, AzimuthTurnsTheViewAboutTheUpAxis) {
     const std::string dir = make_temp_dir();
     const std::string mesh = write_block(dir);
@@ -293,11 +317,6 @@ TEST(CliQuickLook, BadOptionsAreOneLineErrors) {
                           "--legend takes on or off");
     EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
     std::filesystem::remove_all(dir);
-}
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 TEST(CliAnimation, AnOrbitsFramesStartWithThePictureAndTurn) {
