@@ -225,55 +225,24 @@ int render_frames(const RenderArgs& args, const Scene& scene, const Picture& pic
         std::error_code ignored;
         if (!temporary.empty()) std::filesystem::remove_all(temporary, ignored);
     };
-    const bool every_step = args.time_step == "all";
-    const int orbit_frames = args.orbit != 0 ? args.frame_count : 1;
-    const std::vector<Camera> cameras = orbit_cameras(scene.camera, args.orbit, orbit_frames);
-    int written = 0;
-    for (int step = 0;; ++step) {
-        Scene view = scene;
-        if (every_step) {
-            for (SceneVolume& v : view.volumes) v.time_step = step;
-            // The series ends where its first volume has no step: a step out of range.
-            if (step > 0) {
-                auto mesh = pipeline.mesh(view.volumes[0]);
-                if (!mesh.ok() && mesh.error().code == ErrorCode::kInvalidArgument) break;
+    AnimationSpec spec;
+    spec.orbit_degrees = args.orbit;
+    spec.orbit_frames = args.frame_count;
+    spec.every_time_step = args.time_step == "all";
+    spec.splat_cycle = args.vectors.empty() ? 0 : args.cycle;
+    const auto written =
+        for_each_animation_frame(pipeline, scene, spec, [&](int k, const Scene& view) -> Status {
+            TR_TRY(const RenderResult result, picture(view));
+            TR_TRY_STATUS(write_image(result.image, frame_path(dir, k).string()));
+            if (!args.output.empty() && k == 0) {
+                TR_TRY_STATUS(write_image(result.image, args.output));
             }
-        }
-        // The frames of this step: an orbit's cameras, or a vector-splat texture cycle.
-        const std::size_t count =
-            args.vectors.empty() ? cameras.size() : static_cast<std::size_t>(args.cycle);
-        for (std::size_t k = 0; k < count; ++k) {
-            // An orbit over a series turns once over all its frames: one camera a step.
-            if (every_step && args.orbit != 0 &&
-                k != static_cast<std::size_t>(step) % cameras.size()) {
-                continue;
-            }
-            if (args.vectors.empty()) {
-                view.camera = cameras[k];
-            } else {
-                view.method->options["frame"] = static_cast<std::int64_t>(k);
-            }
-            auto result = picture(view);
-            if (!result.ok()) {
-                cleanup();
-                return report_error(result.error());
-            }
-            const Status ok = write_image(result->image, frame_path(dir, written).string());
-            if (!ok.ok()) {
-                cleanup();
-                return report_error(ok.error());
-            }
-            ++written;
-            if (!args.output.empty() && written == 1) {
-                const Status first = write_image(result->image, args.output);
-                if (!first.ok()) {
-                    cleanup();
-                    return report_error(first.error());
-                }
-            }
-            if (::isatty(STDERR_FILENO)) std::fprintf(stderr, "\rframe %d", written);
-        }
-        if (!every_step) break;
+            if (::isatty(STDERR_FILENO)) std::fprintf(stderr, "\rframe %d", k + 1);
+            return Status{};
+        });
+    if (!written.ok()) {
+        cleanup();
+        return report_error(written.error());
     }
     if (::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
     if (!args.movie.empty()) {
@@ -282,7 +251,7 @@ int render_frames(const RenderArgs& args, const Scene& scene, const Picture& pic
         if (!encoded.ok()) return report_error(encoded.error());
     }
     cleanup();
-    std::fprintf(stderr, "tetrender: %d frames%s%s\n", written,
+    std::fprintf(stderr, "tetrender: %d frames%s%s\n", *written,
                  args.frames_dir.empty() ? "" : (" in " + args.frames_dir).c_str(),
                  args.movie.empty() ? "" : (", movie " + args.movie).c_str());
     return kExitOk;

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -27,6 +28,46 @@ std::vector<Camera> orbit_cameras(const Camera& start, double degrees, int frame
         cameras.push_back(c);
     }
     return cameras;
+}
+
+Result<int> for_each_animation_frame(Pipeline& pipeline, const Scene& scene,
+                                     const AnimationSpec& spec,
+                                     const std::function<Status(int, const Scene&)>& frame) {
+    const bool orbit = spec.orbit_degrees != 0;
+    const std::vector<Camera> cameras =
+        orbit_cameras(scene.camera, spec.orbit_degrees, orbit ? std::max(1, spec.orbit_frames) : 1);
+    int written = 0;
+    for (int step = 0;; ++step) {
+        Scene view = scene;
+        if (spec.every_time_step) {
+            for (SceneVolume& v : view.volumes) v.time_step = step;
+            // The series ends where its first volume has no step: a step out of range.
+            if (step > 0) {
+                auto mesh = pipeline.mesh(view.volumes[0]);
+                if (!mesh.ok() && mesh.error().code == ErrorCode::kInvalidArgument) break;
+            }
+        }
+        const std::size_t count =
+            spec.splat_cycle > 0 ? static_cast<std::size_t>(spec.splat_cycle) : cameras.size();
+        for (std::size_t k = 0; k < count; ++k) {
+            // An orbit over a series turns once over all its frames: one camera a step.
+            if (spec.every_time_step && orbit &&
+                k != static_cast<std::size_t>(step) % cameras.size()) {
+                continue;
+            }
+            if (spec.splat_cycle > 0) {
+                MethodSpec method = view.method.value_or(MethodSpec{});
+                method.options["frame"] = static_cast<std::int64_t>(k);
+                view.method = method;
+            } else {
+                view.camera = cameras[k];
+            }
+            TR_TRY_STATUS(frame(written, view));
+            ++written;
+        }
+        if (!spec.every_time_step) break;
+    }
+    return written;
 }
 
 std::filesystem::path frame_path(const std::filesystem::path& dir, int k) {

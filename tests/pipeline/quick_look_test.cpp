@@ -130,5 +130,36 @@ TEST(OrbitCameras, TurnAboutTheUpAxisWithoutRolling) {
     }
 }
 
+TEST(AnimationFrames, AnOrbitsCamerasOrASplatCyclesFramesInOrder) {
+    Pipeline pipeline;
+    Scene scene;
+    scene.camera.position = Vec3(0, -5, 1);
+    AnimationSpec orbit;
+    orbit.orbit_degrees = 90;
+    orbit.orbit_frames = 3;
+    const auto cameras = orbit_cameras(scene.camera, 90, 3);
+    std::vector<int> seen;
+    auto count = for_each_animation_frame(pipeline, scene, orbit, [&](int k, const Scene& view) {
+        seen.push_back(k);
+        EXPECT_EQ(view.camera.position, cameras[static_cast<std::size_t>(k)].position);
+        return Status{};
+    });
+    ASSERT_TRUE(count.ok());
+    EXPECT_EQ(*count, 3);
+    EXPECT_EQ(seen, (std::vector<int>{0, 1, 2}));
+    AnimationSpec cycle;
+    cycle.splat_cycle = 4;
+    seen.clear();
+    count = for_each_animation_frame(pipeline, scene, cycle, [&](int k, const Scene& view) {
+        seen.push_back(static_cast<int>(std::get<std::int64_t>(view.method->options.at("frame"))));
+        EXPECT_EQ(view.camera.position, scene.camera.position);
+        return k == 2 ? Status(make_error(ErrorCode::kIo, "disk full")) : Status{};
+    });
+    // The third frame's error stops the animation and is returned.
+    ASSERT_FALSE(count.ok());
+    EXPECT_EQ(count.error().message, "disk full");
+    EXPECT_EQ(seen, (std::vector<int>{0, 1, 2}));
+}
+
 }  // namespace
 }  // namespace tr
