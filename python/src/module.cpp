@@ -555,20 +555,40 @@ PYBIND11_MODULE(_core, m) {
     m.def(
         "quick_scene",
         [](const TetHandle& mesh, const std::string& name, const std::string& scalar, int component,
-           int width, int height, const std::string& view, const std::string& colormap) {
-            tr::QuickSceneOptions options;
+           int width, int height, const std::string& view, const std::string& colormap,
+           const std::string& look, const std::optional<std::array<double, 2>>& range,
+           std::optional<double> opacity, std::optional<double> unit_distance, double azimuth,
+           double elevation, double zoom, const std::optional<std::array<double, 3>>& background) {
+            if (look != "fitted" && look != "classic") {
+                bad_argument("look must be 'fitted' or 'classic', not '" + look + "'");
+            }
+            tr::QuickSceneOptions options =
+                look == "classic" ? tr::classic_quick_look() : tr::QuickSceneOptions{};
             options.scalar = scalar;
             options.component = component;
             options.width = width;
             options.height = height;
             options.view = view;
             options.colormap = colormap;
+            options.range = range;
+            if (opacity) {
+                options.max_opacity = *opacity;
+                if (!options.opacity_curve.empty())
+                    options.opacity_curve = {{0.0, 0.0}, {1.0, *opacity}};
+            }
+            if (unit_distance) options.unit_distance = *unit_distance;
+            options.azimuth = azimuth, options.elevation = elevation, options.zoom = zoom;
+            if (background)
+                options.background = tr::Vec3((*background)[0], (*background)[1], (*background)[2]);
             SceneHandle s;
             s.scene = unwrap(tr::make_quick_scene(name, *mesh.mesh, options));
             s.scene.volumes.at(0).tets = mesh.mesh;
             return s;
         },
         py::arg("mesh"), py::arg("name"), py::arg("scalar"), py::arg("component"), py::arg("width"),
-        py::arg("height"), py::arg("view"), py::arg("colormap"),
+        py::arg("height"), py::arg("view"), py::arg("colormap"), py::arg("look") = "fitted",
+        py::arg("range") = std::nullopt, py::arg("opacity") = std::nullopt,
+        py::arg("unit_distance") = std::nullopt, py::arg("azimuth") = 0.0,
+        py::arg("elevation") = 0.0, py::arg("zoom") = 1.0, py::arg("background") = std::nullopt,
         "pipeline/quick_scene.h make_quick_scene: the CLI's quick-look scene of a mesh");
 }

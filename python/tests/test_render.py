@@ -81,6 +81,30 @@ def test_quick_scene_is_the_cli_quick_look(ring, cli, output_dir):
     assert np.abs(picture - read_pfm(out)).max() == 0.0
 
 
+def test_quick_scene_options_are_the_clis(ring, cli, output_dir):
+    write_ring(ring, output_dir / "ring.vtu")
+    out = output_dir / "quick_options.pfm"
+    result = run_cli(cli, "render", str(output_dir / "ring.vtu"), "--scalar", "temperature",
+                     "--size", "80x60", "--legend", "off", "--range", "0.2,0.7", "--opacity",
+                     "0.4", "--azimuth", "30", "--elevation", "20", "--zoom", "1.5",
+                     "--background", "0.1,0.2,0.3", "-o", str(out))
+    assert result.returncode == 0, result.stderr
+    scene = tetrender.Scene.quick(ring_mesh(ring), "temperature", width=80, height=60,
+                                  range=(0.2, 0.7), opacity=0.4, azimuth=30, elevation=20,
+                                  zoom=1.5, background=(0.1, 0.2, 0.3))
+    # Measured: largest difference 0.
+    assert np.abs(tetrender.render(scene, dtype=np.float32) - read_pfm(out)).max() == 0.0
+    classic = output_dir / "classic.pfm"
+    result = run_cli(cli, "render", str(output_dir / "ring.vtu"), "--scalar", "temperature",
+                     "--size", "80x60", "--look", "classic", "-o", str(classic))
+    assert result.returncode == 0, result.stderr
+    scene = tetrender.Scene.quick(ring_mesh(ring), "temperature", width=80, height=60,
+                                  look="classic")
+    assert np.abs(tetrender.render(scene, dtype=np.float32) - read_pfm(classic)).max() == 0.0
+    with pytest.raises(tetrender.Error, match="look must be 'fitted' or 'classic'"):
+        tetrender.Scene.quick(ring_mesh(ring), "temperature", look="bold")
+
+
 def test_scene_errors_carry_the_library_message(ring):
     scene = scene_dict(ring_mesh(ring))
     scene["scalar"] = "pressure"

@@ -431,11 +431,23 @@ class Scene:
         height: int = 600,
         view: str = "iso",
         colormap: str = "viridis",
+        look: str = "fitted",
+        range: tuple[float, float] | None = None,
+        opacity: float | None = None,
+        unit_distance: float | None = None,
+        azimuth: float = 0.0,
+        elevation: float = 0.0,
+        zoom: float = 1.0,
+        background: tuple[float, float, float] | None = None,
     ) -> "Scene":
         """The CLI's quick-look scene (``tetrender render mesh --scalar NAME``) of a mesh.
 
-        ``mesh`` is a Mesh, meshio or PyVista-shaped object, or a path. The colour map and
-        opacity span the array's robust range; the camera frames the mesh from ``view``.
+        ``mesh`` is a Mesh, meshio or PyVista-shaped object, or a path. The keywords are the
+        CLI's options of the same names (docs/quick-look.md): by default the colour map and
+        opacity span the 1st to 99th percentile, the unit distance brings a typical ray through
+        the object to opacity 0.8 and the camera fits the object's projected extent from
+        ``view`` turned by ``azimuth`` and ``elevation``; ``look="classic"`` is the scene before
+        2026-11. The legend is the CLI's annotation: ``render(..., legend=True)`` draws it.
         """
         if isinstance(mesh, (str, os.PathLike)):
             mesh = read(mesh)
@@ -445,9 +457,14 @@ class Scene:
             tets = _core.tetrahedralize(source._library_mesh(), 0.0, True)
         scene = cls.__new__(cls)
         scene._meshes = [tets]
-        scene._handle = _core.quick_scene(tets, source.name, scalar,
-                                          -1 if component is None else int(component),
-                                          int(width), int(height), view, colormap)
+        scene._handle = _core.quick_scene(
+            tets, source.name, scalar, -1 if component is None else int(component), int(width),
+            int(height), view, colormap, look=look,
+            range=None if range is None else (float(range[0]), float(range[1])),
+            opacity=None if opacity is None else float(opacity),
+            unit_distance=None if unit_distance is None else float(unit_distance),
+            azimuth=float(azimuth), elevation=float(elevation), zoom=float(zoom),
+            background=None if background is None else tuple(float(c) for c in background))
         return scene
 
     @property
