@@ -12,7 +12,9 @@
 #include <mesh/copyleft/tetgen_mesher.h>
 #endif
 
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 namespace tr::apps {
@@ -29,6 +31,13 @@ struct TetrahedralizeArgs {
     bool convexify = false;
     LoadOptions load;
 };
+
+// Surfaces TetGen meshes (io/read_surface.h), by extension, whatever the case.
+bool is_surface_file(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".stl" || ext == ".off" || ext == ".ply" || ext == ".obj" || ext == ".poly";
+}
 
 int run_tetrahedralize(const TetrahedralizeArgs& args) {
     if (static_cast<int>(args.delaunay) + static_cast<int>(args.tetgen) +
@@ -56,6 +65,11 @@ int run_tetrahedralize(const TetrahedralizeArgs& args) {
                                        "this build has no TetGen (TETRENDER_WITH_TETGEN=OFF)"));
 #endif
     } else {
+        if (is_surface_file(args.input)) {
+            return report_error(make_error(ErrorCode::kUnsupported,
+                                           "a surface: --tetgen meshes the inside of a closed one",
+                                           args.input));
+        }
         LoadOptions load = args.load;
         load.delaunay = args.delaunay;
         load.progress = terminal_progress();
@@ -98,11 +112,12 @@ std::function<int()> add_tetrahedralize_command(CLI::App& app) {
     cmd->add_option("-o,--output", args->output, "Output .vtu")->required();
     cmd->add_flag("--delaunay", args->delaunay,
                   "Delaunay tetrahedralization of the points, ignoring any cells (CGAL)");
-    cmd->add_option("--tetgen", args->tetgen_switches,
-                    "Mesh a closed surface with TetGen; extra TetGen switches (may be empty: "
-                    "--tetgen '')")
-        ->expected(0, 1)
-        ->each([args](const std::string&) { args->tetgen = true; });
+    // Given at all (no value, '' or switches) it asks for TetGen: counted after parsing, since
+    // CLI11 calls `each` for no value and for '' with nothing.
+    CLI::Option* tetgen = cmd->add_option("--tetgen", args->tetgen_switches,
+                                          "Mesh a closed surface with TetGen; extra TetGen "
+                                          "switches (may be none: --tetgen, or --tetgen '')")
+                              ->expected(0, 1);
     cmd->add_option("--quality", args->quality,
                     "With --tetgen: radius-edge ratio bound (-q), 0 for none (default 2)")
         ->check(CLI::NonNegativeNumber);
@@ -117,7 +132,10 @@ std::function<int()> add_tetrahedralize_command(CLI::App& app) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--time-step", args->load.time_step, "Time step to read (default 0)")
         ->check(CLI::NonNegativeNumber);
-    return [args] { return run_tetrahedralize(*args); };
+    return [args, tetgen] {
+        args->tetgen = tetgen->count() > 0;
+        return run_tetrahedralize(*args);
+    };
 }
 
 }  // namespace tr::apps

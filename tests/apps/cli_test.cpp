@@ -108,6 +108,53 @@ TEST(Cli, TetrahedralizeWritesAVtuThatReadsBack) {
     std::filesystem::remove_all(dir);
 }
 
+// A unit cube as an ASCII STL (12 triangles, outward).
+std::string unit_cube_stl() {
+    const int faces[12][3][3] = {
+        {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}},
+        {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}}, {{0, 0, 1}, {1, 1, 1}, {0, 1, 1}},
+        {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}}, {{0, 0, 0}, {1, 0, 1}, {0, 0, 1}},
+        {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}}, {{0, 1, 0}, {1, 1, 1}, {1, 1, 0}},
+        {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}}, {{0, 0, 0}, {0, 1, 1}, {0, 1, 0}},
+        {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}}, {{1, 0, 0}, {1, 1, 1}, {1, 0, 1}}};
+    std::string text = "solid cube\n";
+    for (const auto& f : faces) {
+        text += "facet normal 0 0 0\nouter loop\n";
+        for (const auto& v : f) {
+            text += "vertex " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " +
+                    std::to_string(v[2]) + "\n";
+        }
+        text += "endloop\nendfacet\n";
+    }
+    return text + "endsolid cube\n";
+}
+
+// --tetgen asks for TetGen with no switches, empty ones or some; without it a surface is an
+// error that says to give it.
+TEST(Cli, TetgenWithOrWithoutSwitchesAndASurfaceWithoutIt) {
+    const std::string dir = make_temp_dir();
+    const std::string cube = shell_quote(write_file(dir, "cube.stl", unit_cube_stl()));
+    const std::string out = dir + "/cube.vtu";
+    for (const char* tetgen : {"--tetgen", "--tetgen ''", "--tetgen Y"}) {
+        std::filesystem::remove(out);
+        auto run = run_cli("tetrahedralize " + cube + " " + tetgen + " -o " + shell_quote(out));
+        ASSERT_EQ(run.exit_code, 0) << tetgen << ": " << run.err;
+        auto info = run_cli("info --json " + shell_quote(out));
+        ASSERT_EQ(info.exit_code, 0) << info.err;
+        EXPECT_NEAR(nlohmann::json::parse(info.out)["tetrahedralization"]["volume"].get<double>(),
+                    1.0, 1e-12)
+            << tetgen;
+    }
+    std::filesystem::remove(out);
+    const auto run = run_cli("tetrahedralize " + cube + " -o " + shell_quote(out));
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_NE(run.err.find("a surface: --tetgen meshes the inside of a closed one"),
+              std::string::npos)
+        << run.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    std::filesystem::remove_all(dir);
+}
+
 // The two hexes with a uniform velocity (speed, 0, 0) added to their point data.
 std::string two_hexes_with_flow(double speed) {
     const auto cell_data = std::string(kTwoHexes).find("CELL_DATA");
