@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -119,6 +120,26 @@ Status check_surface(const SurfaceMesh& surface) {
 Result<TetMesh> tetgen_mesh_surface(const SurfaceMesh& surface, const TetgenOptions& options) {
     TR_TRY(const std::string switches, make_switches(options));
     TR_TRY_STATUS(check_surface(surface));
+    if (options.max_volume > 0) {
+        // The enclosed volume by the divergence theorem (cavities, wound the other way,
+        // subtract; either way the size of the sum bounds what TetGen must fill).
+        double six_volume = 0;
+        for (const auto& t : surface.triangles) {
+            const Vec3& a = surface.points[t[0]];
+            six_volume +=
+                glm::dot(a, glm::cross(surface.points[t[1]] - a, surface.points[t[2]] - a));
+        }
+        const double at_least = std::abs(six_volume) / 6.0 / options.max_volume;
+        if (at_least > options.max_tets) {
+            char text[200];
+            std::snprintf(text, sizeof text,
+                          "--max-volume %g asks for at least %.3g tets (the surface encloses "
+                          "%g), more than the %.3g allowed",
+                          options.max_volume, at_least, std::abs(six_volume) / 6.0,
+                          options.max_tets);
+            return make_error(ErrorCode::kInvalidArgument, text, surface.name);
+        }
+    }
 
     detail::TetgenPlc plc;
     plc.points = surface.points;

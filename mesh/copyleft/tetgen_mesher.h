@@ -23,6 +23,10 @@ struct TetgenOptions {
     // switches that need inputs this function does not take (r, i, m, w), write files or
     // print help (g, k, h), or suppress the output read back (N, E, F, I) are rejected.
     std::string extra_switches;
+    // A bound on the work: with max_volume > 0 the mesh has at least (enclosed volume) /
+    // max_volume tets; more than this is refused before TetGen starts (5e7 tets: about 5 GB
+    // and many minutes in TetGen).
+    double max_tets = 5e7;
 };
 
 // Fills the volume enclosed by `surface` with tets: TetGen with -p (the triangles form a
@@ -34,7 +38,8 @@ struct TetgenOptions {
 // Errors: no triangles, an index out of range, a repeated index, a non-finite point
 // (kInvalidMesh, naming it); an open surface, i.e. an edge used by only one triangle
 // (kInvalidMesh, naming the edge); a self-intersecting surface or facets too close for TetGen
-// (kInvalidMesh, with TetGen's reason); bad switches (kInvalidArgument); other TetGen failures
+// (kInvalidMesh, with TetGen's reason); bad switches (kInvalidArgument); a max_volume that asks
+// for more than max_tets tets (kInvalidArgument, saying how many); other TetGen failures
 // (kInternal). TetGen may print a line to stdout even with -Q.
 // Cost: TetGen's, about 1 s per 300k tets, single-threaded.
 Result<TetMesh> tetgen_mesh_surface(const SurfaceMesh& surface, const TetgenOptions& options = {});

@@ -152,6 +152,12 @@ TEST(Cli, TetgenWithOrWithoutSwitchesAndASurfaceWithoutIt) {
               std::string::npos)
         << run.err;
     EXPECT_FALSE(std::filesystem::exists(out));
+    // A volume bound asking for a billion tets is refused before TetGen starts.
+    const auto huge =
+        run_cli("tetrahedralize " + cube + " --tetgen --max-volume 1e-9 -o " + shell_quote(out));
+    EXPECT_EQ(huge.exit_code, 1);
+    EXPECT_NE(huge.err.find("asks for at least 1e+09 tets"), std::string::npos) << huge.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
     std::filesystem::remove_all(dir);
 }
 
