@@ -131,6 +131,7 @@ class LegacyBody {
                 check_implicit_points();
                 values(n, number_type(), kw);
             } else if (kw == "DIMENSIONS") {
+                dimensions_seen_ = true;
                 double points = 1.0;
                 for (int a = 0; a < 3; ++a) points *= static_cast<double>(count("a dimension"));
                 if (header_.dataset == "STRUCTURED_POINTS") {
@@ -173,7 +174,10 @@ class LegacyBody {
             } else if (kw == "FIELD") {
                 if (!field()) return;
             } else {
-                return;  // METADATA, INFORMATION, anything else: VTK judges the rest
+                // METADATA, INFORMATION, anything else: VTK judges the rest, but for its grids'
+                // FIELDs before DIMENSIONS.
+                scan_for_fields();
+                return;
             }
         }
     }
@@ -207,6 +211,28 @@ class LegacyBody {
         std::string w;
         if (!in_.word(w)) bad("a data type");
         return w;
+    }
+
+    // VTK's structured points, structured and rectilinear grid readers first scan the file for
+    // DIMENSIONS word by word (ReadMetaDataSimple), reading a FIELD at every word that starts
+    // with "field" and dereferencing what it gives, null when that FIELD is bad (a segfault found
+    // by fuzz_legacy_vtk: "fieldOZIGIN 1z2OKU]_TABL 3" in garbage after the walk had stopped).
+    // Do the same scan: each such FIELD must be good.
+    void scan_for_fields() {
+        if (dimensions_seen_ ||
+            (header_.dataset != "STRUCTURED_POINTS" && header_.dataset != "STRUCTURED_GRID" &&
+             header_.dataset != "RECTILINEAR_GRID")) {
+            return;
+        }
+        std::string word;
+        while (in_.word(word)) {
+            const std::string w = lower(word);
+            if (starts_with(w, "dimensions")) return;
+            if (starts_with(w, "field")) {
+                keyword_ = "FIELD";
+                if (!field()) return;
+            }
+        }
     }
 
     // A data type that must be a number (coordinates): VTK's ReadArray reads a string type
@@ -506,6 +532,7 @@ class LegacyBody {
     std::string keyword_;           // of the section being read, for messages
     std::uint64_t tuples_ = 0;      // of the current POINT_DATA / CELL_DATA section
     double implicit_points_ = 1.0;  // product of the coordinate counts so far
+    bool dimensions_seen_ = false;
 };
 
 }  // namespace

@@ -156,5 +156,27 @@ TEST(IoFuzzFindings, CoordinatesOfAStringTypeAreAnError) {
         << message;
 }
 
+// fuzz_legacy_vtk, third run: a STRUCTURED_GRID whose walk stopped at a garbage word, with
+// "fieldOZIGIN 1z2OKU]_TABL 3 / SPE defACauIN2 ..." further on: VTK's grid readers scan for
+// DIMENSIONS word by word, read a FIELD at every word starting with "field" and dereference
+// the null a bad one gives (SIGSEGV in vtkStructuredGridReader::ReadMetaDataSimple, exit 139 in
+// a normal build). Measured: "sg.vtk:9: error: FIELD: expected the component count, found
+// 'defACauIN2'".
+TEST(IoFuzzFindings, BadFieldBeforeGridDimensionsIsAnError) {
+    TempDir dir;
+    for (const std::string dataset : {"STRUCTURED_GRID", "STRUCTURED_POINTS", "RECTILINEAR_GRID"}) {
+        SCOPED_TRACE(dataset);
+        const auto path = dir / "sg.vtk";
+        write_file(path, "# vtk DataFile Version 4.2\nfuzz\nASCII\nDATASET " + dataset +
+                             "\nPOINTS 8 float\n0 0 0 1 0 0 0 1 0 1 1 0 0 0 1 1 0 1 0 1 1 1 1 1\n"
+                             "GARBAGE 1\nfieldOZIGIN 1z2OKU]_TABL 3\nSPE defACauIN2 2lt\n"
+                             "DIMENSIONS 2 2 2\n");
+        const std::string message = expect_error(read_mesh(path), path);
+        EXPECT_NE(message.find("FIELD: expected the component count, found 'defACauIN2'"),
+                  std::string::npos)
+            << message;
+    }
+}
+
 }  // namespace
 }  // namespace tr
