@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <new>
 #include <queue>
 #include <string>
 #include <unordered_map>
@@ -366,6 +368,16 @@ Result<FlowVolume> grow_flow_volume(const TetMesh& domain, const FaceAdjacency& 
     if (options.max_refinement < 1) {
         return make_error(ErrorCode::kInvalidArgument, "max_refinement must be at least 1");
     }
+    const double unsplit_tets = 6.0 * seed.resolution * seed.resolution * options.steps;
+    if (unsplit_tets > options.max_tets) {
+        char text[240];
+        std::snprintf(text, sizeof text,
+                      "a seed resolution of %d and %d steps make %.3g tets before any split, "
+                      "more than the %.3g allowed (about %.0f GB); lower --seed-res or --steps",
+                      seed.resolution, options.steps, unsplit_tets, options.max_tets,
+                      unsplit_tets * 60e-9);
+        return make_error(ErrorCode::kInvalidArgument, text);
+    }
     const double t0 = options.start_time.value_or(velocity.first_time());
     if (!std::isfinite(t0)) {
         return make_error(ErrorCode::kInvalidArgument, "the start time must be finite");
@@ -397,12 +409,22 @@ Result<FlowVolume> grow_flow_volume(const TetMesh& domain, const FaceAdjacency& 
     const Vec3 other = std::abs(normal.z) < 0.9 ? Vec3(0, 0, 1) : Vec3(1, 0, 0);
     const Vec3 u = glm::normalize(glm::cross(other, normal));
     const Vec3 v = glm::cross(normal, u);
-    grower.seed(seed, u, v, t0);
-    for (int step = 0; step < options.steps; ++step) {
-        grower.grow_layer(step);
-        report_progress(progress, "growing", static_cast<double>(step + 1) / options.steps);
+    int grown = 0;
+    try {
+        grower.seed(seed, u, v, t0);
+        for (int step = 0; step < options.steps; ++step) {
+            grower.grow_layer(step);
+            grown = step + 1;
+            report_progress(progress, "growing", static_cast<double>(step + 1) / options.steps);
+        }
+        return grower.finish();
+    } catch (const std::bad_alloc&) {
+        // Refinement can still outgrow the memory the bound above allows for: say where.
+        return make_error(ErrorCode::kInvalidArgument,
+                          "out of memory growing the flow volume after " + std::to_string(grown) +
+                              " of " + std::to_string(options.steps) +
+                              " layers; lower --seed-res, --steps or raise --split-threshold");
     }
-    return grower.finish();
 }
 
 Result<FlowVolume> grow_flow_volume(const TetMesh& domain, const FaceAdjacency& adjacency,

@@ -56,6 +56,10 @@ struct FlowVolumeOptions {
     std::size_t max_particles = std::size_t{1} << 21;
     // The time the dye is released; by default the velocity's first time.
     std::optional<double> start_time;
+    // A bound on the work: the seed's 2 r^2 triangles make 6 r^2 tets a layer before any split,
+    // so a volume asking for more than this many is refused before it is grown (1e8 tets:
+    // about 6 GB).
+    double max_tets = 1e8;
 };
 
 // The front after the last layer: particle positions and the triangles still growing.

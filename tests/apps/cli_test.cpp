@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -167,6 +168,25 @@ std::string two_hexes_with_flow(double speed) {
     std::string text = std::string(kTwoHexes).substr(0, cell_data) + "VECTORS v float\n";
     for (int i = 0; i < 12; ++i) text += std::to_string(speed) + " 0 0\n";
     return text + std::string(kTwoHexes).substr(cell_data);
+}
+
+// A flow volume that could not fit in memory is refused before any growth (it ran 71 s into
+// bad_alloc before).
+TEST(Cli, FlowvolRefusesARunawaySizeUpFront) {
+    const std::string dir = make_temp_dir();
+    const std::string path = write_file(dir, "flow.vtk", two_hexes_with_flow(1.0));
+    const std::string out = dir + "/fv.png";
+    const auto run = run_cli("flowvol " + shell_quote(path) +
+                             " --vectors v --seed-center 0.2,0.5,0.5 --seed-size 0.5,0.5 "
+                             "--seed-res 4096 --steps 100000 -o " +
+                             shell_quote(out));
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_NE(run.err.find("make 1.01e+13 tets before any split, more than the 1e+08 allowed"),
+              std::string::npos)
+        << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, FlowvolGrowsAndRenders) {
