@@ -185,6 +185,23 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
     volume.mesh = std::filesystem::absolute(args.input);
     volume.time_step = options.time_step;
     TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, pipeline.mesh(volume));
+    // No --scalar: the first array, or where the mesh is when it has none.
+    std::shared_ptr<const TetMesh> constant;
+    std::vector<std::string> notes;
+    if (options.scalar.empty()) {
+        options.scalar = default_quick_scalar(loaded->tets);
+        if (options.scalar.empty()) {
+            options.scalar = "constant";
+            constant = with_constant_field(loaded->tets, options.scalar);
+            notes.push_back(
+                "the mesh has no arrays: showing where it is (give --scalar NAME "
+                "for a mesh with arrays)");
+        } else {
+            notes.push_back("no --scalar: showing '" + options.scalar + "', the mesh's first " +
+                            (loaded->tets.point_fields().empty() ? "cell" : "point") + " array");
+        }
+    }
+    const TetMesh& shown = constant ? *constant : loaded->tets;
     // More volumes in the same space: MESH:ARRAY each (the array after the last colon).
     std::vector<std::shared_ptr<const LoadedMesh>> others;
     std::vector<QuickVolume> more;
@@ -201,9 +218,12 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
         more.push_back({other.mesh, &mesh->tets, spec.substr(colon + 1), -1, ""});
         others.push_back(std::move(mesh));
     }
-    std::vector<std::string> notes;
-    auto scene = make_quick_scene(volume.mesh, loaded->tets, options, more, &notes);
+    // Of a field of ones, the note that it is constant says nothing new.
+    std::vector<std::string> scene_notes;
+    auto scene = make_quick_scene(volume.mesh, shown, options, more, &scene_notes);
+    if (!constant) notes.insert(notes.end(), scene_notes.begin(), scene_notes.end());
     if (!scene.ok()) return with_where(scene.error(), args.input);
+    if (constant) scene->volumes[0].tets = constant;  // handed over: the file has no such array
     print_notes(notes);
     return scene;
 }
@@ -270,12 +290,6 @@ int run_render(const RenderArgs& args) {
     const bool scene_mode = is_scene_file(args.input);
     if (scene_mode && !args.volumes.empty()) {
         std::fprintf(stderr, "tetrender: --volume is for quick mode; a scene lists `volumes`\n");
-        return kExitUsage;
-    }
-    if (!scene_mode && args.scalar.empty()) {
-        std::fprintf(stderr,
-                     "tetrender: rendering a mesh file needs --scalar NAME (or give a "
-                     "scene .json)\n");
         return kExitUsage;
     }
     const bool animated = args.orbit != 0 || args.time_step == "all" || !args.frames_dir.empty() ||
@@ -473,7 +487,9 @@ std::function<int()> add_render_command(CLI::App& app) {
         ->check(CLI::Range(1, 1024));
     cmd->add_flag("--stats", args->stats,
                   "Print one JSON line: time of each phase (ms), cells drawn, fragments");
-    cmd->add_option("--scalar", args->scalar, "Quick mode: the array to render");
+    cmd->add_option("--scalar", args->scalar,
+                    "Quick mode: the array to render (default: the first point array, else the "
+                    "first cell array, else where the mesh is)");
     cmd->add_option("--component", args->component,
                     "Quick mode: 'magnitude' (default) or a component index");
     cmd->add_option("--size", args->size, "Quick mode: image size WxH (default 800x600)");

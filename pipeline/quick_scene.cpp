@@ -105,7 +105,10 @@ Result<SceneVolume> quick_volume(const std::filesystem::path& mesh_path, const T
         notes->push_back("array '" + scalar + "' is constant (" + std::to_string(range[0]) +
                          "): the picture shows where the mesh is, in one colour");
     }
-    const double lo = range[0], hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
+    // A constant sits in the middle of the colour map and of the opacity ramp.
+    const double half = 0.5 * std::max(1.0, std::abs(range[0]));
+    const double lo = range[1] > range[0] ? range[0] : range[0] - half;
+    const double hi = range[1] > range[0] ? range[1] : range[0] + half;
     TR_TRY(const std::vector<OpacityPoint> opacity, quick_opacity(options, lo, hi));
     TR_TRY(TransferFunction colors, make_quick_transfer_function(colormap, lo, hi, 0.5, 1.0));
     if (options.colormap_preset) {
@@ -131,6 +134,22 @@ Result<SceneVolume> quick_volume(const std::filesystem::path& mesh_path, const T
 }
 
 }  // namespace
+
+std::string default_quick_scalar(const TetMesh& mesh) {
+    if (!mesh.point_fields().empty()) return mesh.point_fields().front().name;
+    if (!mesh.cell_fields().empty()) return mesh.cell_fields().front().name;
+    return {};
+}
+
+std::shared_ptr<const TetMesh> with_constant_field(const TetMesh& mesh, const std::string& name) {
+    auto copy = std::make_shared<TetMesh>(mesh);
+    Field ones;
+    ones.name = name;
+    ones.values = std::vector<float>(mesh.num_points(), 1.0f);
+    // One tuple a point, a new name: cannot fail.
+    (void)copy->add_point_field(std::move(ones));
+    return copy;
+}
 
 QuickSceneOptions classic_quick_look() {
     QuickSceneOptions options;

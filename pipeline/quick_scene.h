@@ -10,6 +10,7 @@
 
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <pipeline/loaded_mesh.h>
 #include <string>
@@ -61,6 +62,14 @@ struct QuickSceneOptions {
     double view_angle = 30.0;
     Vec3 background{0.0};
 };
+
+// The array a quick look shows when none is named: the first point array, else the first cell
+// array; empty when the mesh has none.
+std::string default_quick_scalar(const TetMesh& mesh);
+
+// A copy of `mesh` with a point array `name` of ones (what a quick look of a mesh without
+// arrays shows: where the mesh is). Cost: a copy of the mesh.
+std::shared_ptr<const TetMesh> with_constant_field(const TetMesh& mesh, const std::string& name);
 
 // The quick look of tetrender before 2026-11 (`--look classic`): the whole range, an opacity
 // ramp 0 -> 0.3, a unit distance of a twentieth of the bounds' diagonal, the bounds' sphere

@@ -270,6 +270,44 @@ TEST(CliQuickLook, AzimuthTurnsTheViewAboutTheUpAxis) {
     std::filesystem::remove_all(dir);
 }
 
+TEST(CliQuickLook, WithoutScalarTheFirstArrayOrWhereTheMeshIs) {
+    const std::string dir = make_temp_dir();
+    const std::string block = write_block(dir);
+    auto run = run_cli("render " + shell_quote(block) + " --size 64x48 -o " +
+                       shell_quote(dir + "/default.png"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.err.find("no --scalar: showing 't', the mesh's first point array"),
+              std::string::npos)
+        << run.err;
+    run = run_cli("render " + shell_quote(block) + " --scalar t --size 64x48 -o " +
+                  shell_quote(dir + "/named.png"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(slurp(dir + "/default.png"), slurp(dir + "/named.png"));
+    // The block without its point data: where the mesh is, in one colour.
+    std::string text = slurp(block);
+    std::ofstream(dir + "/bare.vtk") << text.substr(0, text.find("POINT_DATA"));
+    run = run_cli("render " + shell_quote(dir + "/bare.vtk") + " --size 64x48 --legend off -o " +
+                  shell_quote(dir + "/bare.pfm"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.err.find("the mesh has no arrays: showing where it is"), std::string::npos)
+        << run.err;
+    const Image bare = testing::read_pfm(dir + "/bare.pfm");
+    // One colour: every lit pixel has the same hue (its channels in one ratio: a constant
+    // colour's emission times the pixel's opacity).
+    const auto green_share = [](const Vec3f& p) { return p.y / (p.x + p.y + p.z); };
+    const Vec3f brightest = *std::max_element(
+        bare.pixels.begin(), bare.pixels.end(),
+        [](const Vec3f& a, const Vec3f& b) { return a.x + a.y + a.z < b.x + b.y + b.z; });
+    std::size_t lit = 0;
+    for (const Vec3f& p : bare.pixels) {
+        if (p.x + p.y + p.z < 0.05f) continue;
+        ++lit;
+        EXPECT_NEAR(green_share(p), green_share(brightest), 0.02);
+    }
+    EXPECT_GT(lit, 500u);
+    std::filesystem::remove_all(dir);
+}
+
 TEST(CliQuickLook, AnEmptyPictureIsSaid) {
     const std::string dir = make_temp_dir();
     const std::string mesh = shell_quote(write_block(dir));
