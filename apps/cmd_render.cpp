@@ -7,6 +7,7 @@
 #include <project/colormap_preset.h>
 #include <project/scene.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -34,6 +35,7 @@ struct RenderArgs {
     bool stats = false;
     // Quick mode (input is a mesh).
     std::string scalar;
+    bool point_data = false, cell_data = false;  // which of the two a name both has
     std::string component = "magnitude";
     std::string size = "800x600";
     std::string view = "iso";
@@ -200,6 +202,28 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
             notes.push_back("no --scalar: showing '" + options.scalar + "', the mesh's first " +
                             (loaded->tets.point_fields().empty() ? "cell" : "point") + " array");
         }
+    }
+    // A name that is both point and cell data: the point data unless --cell-data says.
+    const auto has = [&](const std::vector<Field>& fields) {
+        return std::any_of(fields.begin(), fields.end(),
+                           [&](const Field& f) { return f.name == options.scalar; });
+    };
+    const bool as_point = has(loaded->tets.point_fields());
+    const bool as_cell = has(loaded->tets.cell_fields());
+    if ((args.point_data && !as_point) || (args.cell_data && !as_cell)) {
+        return make_error(ErrorCode::kNotFound,
+                          "no " + std::string(args.point_data ? "point" : "cell") + " array '" +
+                              options.scalar + "'",
+                          args.input);
+    }
+    if (args.cell_data && as_point) {
+        constant = without_point_field(loaded->tets, options.scalar);
+        notes.push_back("--cell-data: '" + options.scalar +
+                        "' from the cell data (a scene written now would read the point data)");
+    } else if (as_point && as_cell && !args.point_data) {
+        notes.push_back("'" + options.scalar +
+                        "' is both point and cell data: showing the point data (--cell-data for "
+                        "the other)");
     }
     const TetMesh& shown = constant ? *constant : loaded->tets;
     // More volumes in the same space: MESH:ARRAY each (the array after the last colon).
@@ -490,6 +514,11 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--scalar", args->scalar,
                     "Quick mode: the array to render (default: the first point array, else the "
                     "first cell array, else where the mesh is)");
+    cmd->add_flag("--point-data", args->point_data,
+                  "Quick mode: the point array of that name, when it is cell data too (default)");
+    cmd->add_flag("--cell-data", args->cell_data,
+                  "Quick mode: the cell array of that name, when it is point data too")
+        ->excludes("--point-data");
     cmd->add_option("--component", args->component,
                     "Quick mode: 'magnitude' (default) or a component index");
     cmd->add_option("--size", args->size, "Quick mode: image size WxH (default 800x600)");

@@ -151,6 +151,13 @@ std::shared_ptr<const TetMesh> with_constant_field(const TetMesh& mesh, const st
     return copy;
 }
 
+std::shared_ptr<const TetMesh> without_point_field(const TetMesh& mesh, const std::string& name) {
+    auto copy = std::make_shared<TetMesh>(mesh);
+    auto& fields = copy->point_fields();
+    std::erase_if(fields, [&](const Field& f) { return f.name == name; });
+    return copy;
+}
+
 QuickSceneOptions classic_quick_look() {
     QuickSceneOptions options;
     options.range_percent = 0.0;

@@ -71,6 +71,10 @@ std::string default_quick_scalar(const TetMesh& mesh);
 // arrays shows: where the mesh is). Cost: a copy of the mesh.
 std::shared_ptr<const TetMesh> with_constant_field(const TetMesh& mesh, const std::string& name);
 
+// A copy of `mesh` without its point array `name`, so that a cell array of the same name is
+// what `name` reads (`--cell-data`). Cost: a copy of the mesh.
+std::shared_ptr<const TetMesh> without_point_field(const TetMesh& mesh, const std::string& name);
+
 // The quick look of tetrender before 2026-11 (`--look classic`): the whole range, an opacity
 // ramp 0 -> 0.3, a unit distance of a twentieth of the bounds' diagonal, the bounds' sphere
 // framed. Pictures comparable with older ones; the realdata method tests keep to it.

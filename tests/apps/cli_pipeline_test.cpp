@@ -308,6 +308,37 @@ TEST(CliQuickLook, WithoutScalarTheFirstArrayOrWhereTheMeshIs) {
     std::filesystem::remove_all(dir);
 }
 
+TEST(CliQuickLook, ANameThatIsPointAndCellData) {
+    const std::string dir = make_temp_dir();
+    // The block with a cell array `t` too (each cell its index).
+    std::string text = slurp(write_block(dir)) +
+                       "CELL_DATA 12\nSCALARS t double 1\n"
+                       "LOOKUP_TABLE default\n";
+    for (int c = 0; c < 12; ++c) text += std::to_string(c) + "\n";
+    const std::string mesh = dir + "/both.vtk";
+    std::ofstream(mesh) << text;
+    const auto render = [&](const std::string& flag, const std::string& out) {
+        return run_cli("render " + shell_quote(mesh) + " --scalar t --size 64x48 " + flag + " -o " +
+                       shell_quote(dir + "/" + out));
+    };
+    auto run = render("", "default.png");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.err.find("'t' is both point and cell data: showing the point data"),
+              std::string::npos)
+        << run.err;
+    run = render("--point-data", "point.png");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(run.err.find("both"), std::string::npos) << run.err;
+    run = render("--cell-data", "cell.png");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(slurp(dir + "/default.png"), slurp(dir + "/point.png"));
+    EXPECT_NE(slurp(dir + "/default.png"), slurp(dir + "/cell.png"));
+    expect_one_line_error(run_cli("render " + shell_quote(write_block(dir)) +
+                                  " --scalar t --cell-data -o " + shell_quote(dir + "/x.png")),
+                          1, "no cell array 't'");
+    std::filesystem::remove_all(dir);
+}
+
 TEST(CliQuickLook, AnEmptyPictureIsSaid) {
     const std::string dir = make_temp_dir();
     const std::string mesh = shell_quote(write_block(dir));
