@@ -1,29 +1,61 @@
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <pipeline/paraview_camera.h>
-#include <regex>
 #include <sstream>
+#include <string_view>
 #include <unistd.h>
 #include <vector>
 
 namespace tr {
 namespace {
 
-// Each <Property name="N" ...> ... </Property> as N -> its elements' values by index (as text).
-std::map<std::string, std::map<int, std::string>> properties(const std::string& text) {
+// The value of attribute `name` in the tag text `tag` (`name="value"` after a blank), or none.
+std::optional<std::string> attribute(std::string_view tag, std::string_view name) {
+    for (std::size_t at = tag.find(name); at != std::string_view::npos;
+         at = tag.find(name, at + 1)) {
+        const bool starts = at > 0 && std::isspace(static_cast<unsigned char>(tag[at - 1]));
+        std::size_t p = at + name.size();
+        while (p < tag.size() && std::isspace(static_cast<unsigned char>(tag[p]))) ++p;
+        if (!starts || p >= tag.size() || tag[p] != '=') continue;
+        ++p;
+        while (p < tag.size() && std::isspace(static_cast<unsigned char>(tag[p]))) ++p;
+        if (p >= tag.size() || tag[p] != '"') continue;
+        const std::size_t end = tag.find('"', p + 1);
+        if (end == std::string_view::npos) return std::nullopt;
+        return std::string(tag.substr(p + 1, end - p - 1));
+    }
+    return std::nullopt;
+}
+
+// Each <Property name="N" ...> ... </Property> as N -> its elements' values by index (as
+// text). A plain scan (std::regex trips GCC 12's uninitialized-use warnings under the
+// sanitizers).
+std::map<std::string, std::map<int, std::string>> properties(std::string_view text) {
     std::map<std::string, std::map<int, std::string>> found;
-    static const std::regex property(
-        R"re(<Property\s[^>]*name\s*=\s*"([^"]*)"[^>]*>([\s\S]*?)</Property\s*>)re");
-    static const std::regex element(
-        R"re(<Element\s[^>]*index\s*=\s*"([0-9]+)"[^>]*value\s*=\s*"([^"]*)"[^>]*/?>)re");
-    for (auto p = std::sregex_iterator(text.begin(), text.end(), property);
-         p != std::sregex_iterator(); ++p) {
-        auto& values = found[(*p)[1].str()];
-        const std::string body = (*p)[2].str();
-        for (auto e = std::sregex_iterator(body.begin(), body.end(), element);
-             e != std::sregex_iterator(); ++e) {
-            values[std::stoi((*e)[1].str())] = (*e)[2].str();
+    for (std::size_t at = text.find("<Property"); at != std::string_view::npos;
+         at = text.find("<Property", at + 1)) {
+        const std::size_t tag_end = text.find('>', at);
+        if (tag_end == std::string_view::npos) break;
+        const auto name = attribute(text.substr(at, tag_end - at), "name");
+        const std::size_t close = text.find("</Property", tag_end);
+        if (!name || close == std::string_view::npos) continue;
+        auto& values = found[*name];
+        const std::string_view body = text.substr(tag_end, close - tag_end);
+        for (std::size_t e = body.find("<Element"); e != std::string_view::npos;
+             e = body.find("<Element", e + 1)) {
+            const std::size_t e_end = body.find('>', e);
+            if (e_end == std::string_view::npos) break;
+            const std::string_view tag = body.substr(e, e_end - e);
+            const auto index = attribute(tag, "index");
+            const auto value = attribute(tag, "value");
+            if (!index || !value || index->empty() || index->size() > 6 ||
+                index->find_first_not_of("0123456789") != std::string::npos) {
+                continue;
+            }
+            values[std::stoi(*index)] = *value;
         }
     }
     return found;
