@@ -78,4 +78,18 @@ void check_vtk_legacy(const fs::path& path, const std::string& want_dataset);
 // body (ASCII: tokens per line; binary: sizes and list lengths) so that it fits the file.
 void check_ply(const fs::path& path);
 
+// VTK XML pre-checks and scanners (xml_checks.cpp).
+// The value of attribute `name` in the tag starting at or after `from` (up to its '>'), or "".
+std::string xml_attribute(const std::string& text, std::size_t from, const std::string& name);
+// Whether `needle` occurs in the file (read in 1 MiB chunks overlapping by the needle's size).
+bool file_contains(const fs::path& path, const std::string& needle);
+// The type="..." of the first `element` (e.g. "<DataArray") after `section` (e.g. "<Points"),
+// or "" when there is none.
+std::string first_array_type(const std::string& text, const std::string& section,
+                             const std::string& element);
+// Checks that a file looks like a VTK XML file of `type` (root element, byte order, header
+// type, piece counts, the last cell offset, polyhedron faces) before VTK reads it; `ext` names
+// the extension in errors. Throws IoError.
+void check_vtk_xml(const fs::path& path, const std::string& type, const std::string& ext);
+
 }  // namespace tr::io_detail
