@@ -45,6 +45,7 @@ struct RenderArgs {
     std::vector<double> range;         // lo, hi
     std::string look = "fitted";
     std::optional<double> range_percent;
+    bool log_scale = false;
     std::optional<double> opacity;
     std::vector<std::string> opacity_curve;  // t:a each
     std::optional<double> unit_distance;
@@ -129,6 +130,7 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
     }
     if (!args.range.empty()) options.range = std::array<double, 2>{args.range[0], args.range[1]};
     if (args.range_percent) options.range_percent = *args.range_percent;
+    options.log_scale = args.log_scale;
     if (args.opacity) {
         options.max_opacity = *args.opacity;
         if (!options.opacity_curve.empty())
@@ -314,6 +316,12 @@ int run_render(const RenderArgs& args) {
     const bool scene_mode = is_scene_file(args.input);
     if (scene_mode && !args.volumes.empty()) {
         std::fprintf(stderr, "tetrender: --volume is for quick mode; a scene lists `volumes`\n");
+        return kExitUsage;
+    }
+    if (scene_mode && args.log_scale) {
+        std::fprintf(stderr,
+                     "tetrender: --log is for quick mode; a scene's transfer function is its own "
+                     "(quick mode's --log --write-scene writes one)\n");
         return kExitUsage;
     }
     const bool animated = args.orbit != 0 || args.time_step == "all" || !args.frames_dir.empty() ||
@@ -539,6 +547,10 @@ std::function<int()> add_render_command(CLI::App& app) {
                     "Quick mode: the range from the P-th to the (100-P)-th percentile (default 1; "
                     "0: the whole range)")
         ->check(CLI::Range(0.0, 49.0));
+    cmd->add_flag("--log", args->log_scale,
+                  "Quick mode: a log colour scale: colours and opacity spread over log10 of the "
+                  "range (of the positive values; those <= 0 take the low end's colour), the "
+                  "legend's ticks at powers of ten");
     cmd->add_option("--opacity", args->opacity,
                     "Quick mode: the opacity at the range's top (default 0.5), a fifth of it at "
                     "the bottom")

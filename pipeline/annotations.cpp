@@ -43,6 +43,7 @@ Status annotate(Image& image, const Scene& scene, Pipeline& pipeline,
                 }
             }
             if (!spec.background) spec.background = Vec3f(scene.background);
+            if (volume.log_scale) spec.log_scale = true;
             // Each legend avoids what is drawn already, the earlier legends included.
             auto layout = draw_legend(image, volume.transfer_function, spec);
             if (!layout) {

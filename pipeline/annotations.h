@@ -23,7 +23,7 @@ struct AnnotationOptions {
     // The legend's settings. Left empty, the title is volume 0's array ("name" or "name[c]" for
     // a component) and the range its transfer function's colour points'; the background is the
     // scene's. The title and range given here are volume 0's; other volumes' legends always
-    // take their own.
+    // take their own. A volume made with a log scale (SceneVolume::log_scale) gets a log axis.
     LegendSpec legend_spec;
     Vec3f box_color{0.85f, 0.85f, 0.85f};
 };

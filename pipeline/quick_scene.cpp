@@ -6,6 +6,7 @@
 #include <limits>
 #include <pipeline/quick_look.h>
 #include <pipeline/quick_scene.h>
+#include <span>
 #include <utility>
 
 namespace tr {
@@ -79,8 +80,32 @@ Result<SceneVolume> quick_volume(const std::filesystem::path& mesh_path, const T
     volume.scalar = scalar;
     volume.component = component;
     volume.time_step = options.time_step;
+    volume.log_scale = options.log_scale;
     TR_TRY(const std::vector<float> values, point_scalar(mesh, scalar, component));
-    auto whole = robust_range(values, 0.0);
+    // With a log scale, the range is found in log10 of the positive values.
+    std::vector<float> logs;
+    if (options.log_scale) {
+        std::size_t not_positive = 0;
+        for (float v : values) {
+            if (v > 0.0f && std::isfinite(v)) {
+                logs.push_back(static_cast<float>(std::log10(static_cast<double>(v))));
+            } else if (std::isfinite(v)) {
+                ++not_positive;
+            }
+        }
+        if (logs.empty()) {
+            return make_error(ErrorCode::kInvalidArgument,
+                              "--log: array '" + scalar + "' has no positive value",
+                              mesh_path.string());
+        }
+        if (not_positive > 0 && notes) {
+            notes->push_back("--log: " + std::to_string(not_positive) + " of " +
+                             std::to_string(values.size()) + " values of '" + scalar +
+                             "' are <= 0 and take the low end's colour");
+        }
+    }
+    const std::span<const float> ranged = options.log_scale ? std::span<const float>(logs) : values;
+    auto whole = robust_range(ranged, 0.0);
     if (!whole.ok()) {
         return make_error(ErrorCode::kInvalidMesh, "array '" + scalar + "' has no finite value",
                           mesh_path.string());
@@ -92,17 +117,27 @@ Result<SceneVolume> quick_volume(const std::filesystem::path& mesh_path, const T
             return make_error(ErrorCode::kInvalidArgument,
                               "the range must be two finite values lo < hi");
         }
+        if (options.log_scale) {
+            if (!(range[0] > 0.0)) {
+                return make_error(
+                    ErrorCode::kInvalidArgument,
+                    "--log needs a positive range, not starting at " + std::to_string(range[0]));
+            }
+            range = {std::log10(range[0]), std::log10(range[1])};
+        }
         if (notes && (range[0] > (*whole)[1] || range[1] < (*whole)[0])) {
+            const auto real = [&](double x) { return options.log_scale ? std::pow(10.0, x) : x; };
             notes->push_back("the range given lies outside the values of '" + scalar + "' (" +
-                             std::to_string((*whole)[0]) + " to " + std::to_string((*whole)[1]) +
-                             ")");
+                             std::to_string(real((*whole)[0])) + " to " +
+                             std::to_string(real((*whole)[1])) + ")");
         }
     } else if (options.range_percent > 0.0) {
-        TR_TRY(range, robust_range(values, options.range_percent));
+        TR_TRY(range, robust_range(ranged, options.range_percent));
         if (!(range[1] > range[0])) range = *whole;  // most values equal: the whole range
     }
     if (!(range[1] > range[0]) && notes) {
-        notes->push_back("array '" + scalar + "' is constant (" + std::to_string(range[0]) +
+        const double value = options.log_scale ? std::pow(10.0, range[0]) : range[0];
+        notes->push_back("array '" + scalar + "' is constant (" + std::to_string(value) +
                          "): the picture shows where the mesh is, in one colour");
     }
     // A constant sits in the middle of the colour map and of the opacity ramp.
@@ -115,21 +150,24 @@ Result<SceneVolume> quick_volume(const std::filesystem::path& mesh_path, const T
         TR_TRY(colors,
                preset_transfer_function(*options.colormap_preset, lo, hi, {{lo, 0.5}}, 1.0));
     }
+    // Colours and opacity over log10 of the scalar, as a function of the scalar itself.
+    TR_TRY(TransferFunction shape, TransferFunction::create(colors.color_points(), opacity, 1.0));
+    if (options.log_scale) {
+        TR_TRY(shape, log_scaled(shape));
+    }
     // The unit distance: given, or the one that brings the mean chord to options.ray_opacity.
     double unit = options.unit_distance;
     if (!(unit > 0.0) && options.unit_distance_of_diagonal > 0.0) {
         unit = options.unit_distance_of_diagonal * mesh.bounds().diagonal();
     }
     if (!(unit > 0.0)) {
-        TR_TRY(const TransferFunction shape,
-               TransferFunction::create(colors.color_points(), opacity, 1.0));
         const double target = std::clamp(options.ray_opacity, 0.01, 0.99);
         unit = unit_distance_for_opacity(
             values, [&](double s) { return shape.opacity(s); }, mean_chord_length(mesh), target);
         if (!(unit > 0.0)) unit = std::max(mesh.bounds().diagonal(), 1e-12) / 20.0;
     }
     TR_TRY(volume.transfer_function,
-           TransferFunction::create(colors.color_points(), opacity, unit));
+           TransferFunction::create(shape.color_points(), shape.opacity_points(), unit));
     return volume;
 }
 

@@ -41,6 +41,13 @@ struct QuickSceneOptions {
     // beyond take the end colours), 0: the whole range.
     std::optional<std::array<double, 2>> range;
     double range_percent = 1.0;
+    // A log colour scale (`--log`): the colour map and the opacity spread evenly over log10 of
+    // the range, which is then found among the positive values only (a range given must be
+    // positive); values <= 0 take the low end's colour and opacity (a note counts them). The
+    // transfer function stays one of the scalar (log_scaled, project/transfer_function.h), so
+    // the field is interpolated linearly in each cell as always and a scene written from it
+    // renders the same; the legend must be told (LegendSpec::log_scale).
+    bool log_scale = false;
     // Opacity (of a slab one unit distance thick): a ramp from opacity_floor * max_opacity at
     // the range's low end to max_opacity at its high end, so that low values stay visible,
     // or, when given, `opacity_curve`: (t, a) points, t in [0, 1] across the range.

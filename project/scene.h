@@ -66,6 +66,11 @@ struct SceneVolume {
     int component = -1;  // -1: magnitude (or the only component); >= 0: that component
     int time_step = 0;
     TransferFunction transfer_function;
+    // Whether the transfer function's points were spread evenly in log10 of the scalar (a quick
+    // look's --log, project/transfer_function.h log_scaled): read by the legend for its axis.
+    // Not a scene-file key (scene.md has none; the transfer function alone renders the same):
+    // false for a scene read from a file.
+    bool log_scale = false;
 };
 
 // A method's own keys (spec: "a method may take further keys of its own"), checked by the

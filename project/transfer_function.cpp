@@ -131,4 +131,30 @@ double TransferFunction::mean_extinction(double s0, double s1) const {
 double TransferFunction::s_min() const { return std::min(color_.front().s, opacity_.front().s); }
 double TransferFunction::s_max() const { return std::max(color_.back().s, opacity_.back().s); }
 
+Result<TransferFunction> log_scaled(const TransferFunction& over_log10, int samples) {
+    const double a = over_log10.s_min(), b = over_log10.s_max();
+    if (!(a >= -300.0 && b <= 300.0)) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "a log scale takes control points in [-300, 300] (log10 of the scalar)");
+    }
+    if (samples < 2) {
+        return make_error(ErrorCode::kInvalidArgument, "a log scale takes at least 2 samples");
+    }
+    std::vector<double> xs;
+    for (int i = 0; i < samples; ++i) xs.push_back(a + (b - a) * i / (samples - 1));
+    for (const ColorPoint& p : over_log10.color_points()) xs.push_back(p.s);
+    for (const OpacityPoint& p : over_log10.opacity_points()) xs.push_back(p.s);
+    std::sort(xs.begin(), xs.end());
+    xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+    std::vector<ColorPoint> color;
+    std::vector<OpacityPoint> opacity;
+    for (double x : xs) {
+        const double s = std::pow(10.0, x);
+        color.push_back({s, over_log10.color(x)});
+        opacity.push_back({s, over_log10.opacity(x)});
+    }
+    return TransferFunction::create(std::move(color), std::move(opacity),
+                                    over_log10.unit_distance());
+}
+
 }  // namespace tr

@@ -61,4 +61,15 @@ class TransferFunction {
     std::vector<double> integral_;
 };
 
+// A log colour scale written as a transfer function of the scalar itself (scene.md has no log
+// key, so a scene written with it renders the same in every reader of the spec): `over_log10`,
+// whose control points are in log10 of the scalar, becomes one whose control points sit at
+// 10^x for every control point x of `over_log10` and for `samples` values of x spread evenly
+// between its first and last, each with over_log10's colour and opacity there, and the same
+// unit distance. Between them it is linear in the scalar, so it follows the log map to within
+// a small share of a step (measured in tests/project/transfer_function_test.cpp); values below
+// 10^first take the first point's colour and opacity, as any transfer function clamps.
+// Errors (kInvalidArgument): control points beyond 10^+-300, samples < 2.
+Result<TransferFunction> log_scaled(const TransferFunction& over_log10, int samples = 129);
+
 }  // namespace tr

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <overlay/ticks.h>
 #include <vector>
 
@@ -16,7 +17,7 @@ ImU32 color_of(const Vec3& c, float alpha = 1.0f) {
 
 }  // namespace
 
-void draw_legend_overlay(const TransferFunction& tf, const std::string& title) {
+void draw_legend_overlay(const TransferFunction& tf, const std::string& title, bool decades) {
     const double lo = tf.color_points().front().s, hi = tf.color_points().back().s;
     if (!(hi > lo)) return;
     const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -25,13 +26,20 @@ void draw_legend_overlay(const TransferFunction& tf, const std::string& title) {
     const float bar_h = display.y * 0.45f;
     if (bar_h < 3 * font || display.x < 8 * font) return;
 
-    const Ticks ticks = linear_ticks(lo, hi, 7);
-    std::vector<std::pair<std::string, double>> labels{{range_label(hi), hi},
-                                                       {range_label(lo), lo}};
+    // Ticks where the bar's axis (the scalar, or its log10) is; labels of the values.
+    Ticks ticks = linear_ticks(lo, hi, 7);
+    const auto value = [&](double s) { return decades ? std::pow(10.0, s) : s; };
+    if (decades) {
+        const Ticks powers = log_ticks(value(lo), value(hi), 7);
+        ticks.values.clear();
+        for (double v : powers.values) ticks.values.push_back(std::log10(v));
+    }
+    std::vector<std::pair<std::string, double>> labels{{range_label(value(hi)), hi},
+                                                       {range_label(value(lo)), lo}};
     for (double v : ticks.values) {
         const double t = (v - lo) / (hi - lo);
         if (t * bar_h < font * 1.1f || (1 - t) * bar_h < font * 1.1f) continue;  // touches an end
-        labels.push_back({tick_label(v, ticks.step), v});
+        labels.push_back({decades ? tick_label(value(v), 0) : tick_label(v, ticks.step), v});
     }
     float label_w = 0;
     for (const auto& l : labels)

@@ -11,7 +11,10 @@
 
 namespace tr::viewer {
 
-// Draws the legend into the current ImGui frame (between NewFrame and Render).
-void draw_legend_overlay(const TransferFunction& tf, const std::string& title);
+// Draws the legend into the current ImGui frame (between NewFrame and Render). `decades`: the
+// transfer function takes log10 of the values, so the labels are 10^s and the ticks the
+// powers of ten.
+void draw_legend_overlay(const TransferFunction& tf, const std::string& title,
+                         bool decades = false);
 
 }  // namespace tr::viewer

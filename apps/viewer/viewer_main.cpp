@@ -48,6 +48,7 @@ struct Args {
     std::string colormap;
     double opacity = 0;
     double unit_distance = 0;
+    bool log_scale = false;
     bool panel_in_screenshot = false;
     std::string legend = "on";  // the colour legend (ImGui): on or off
     int exit_after_frames = 0;  // interactive mode: quit after this many frames (tests)
@@ -93,6 +94,7 @@ int run(const Args& args) {
     options.colormap = args.colormap;
     options.max_opacity = args.opacity;
     options.unit_distance = args.unit_distance;
+    options.log_scale = args.log_scale;
     if (!args.flowvol_vectors.empty()) {
         FlowVolumeSpec spec = args.flow;
         spec.vectors = args.flowvol_vectors;
@@ -314,6 +316,9 @@ int main(int argc, char** argv) {
            "--opacity", args.opacity,
            "Largest opacity: of the ramp (default 0.3), or a scene's opacity points scaled to it")
         ->check(CLI::Range(0.0, 0.999));
+    app.add_flag("--log", args.log_scale,
+                 "Mesh mode: a log colour scale (log10 of the scalar, values <= 0 as the "
+                 "smallest positive one; the legend's ticks at powers of ten)");
     app.add_option("--unit-distance", args.unit_distance,
                    "Unit distance of the opacities (default: the scene's, or diagonal / 20)")
         ->check(CLI::PositiveNumber);

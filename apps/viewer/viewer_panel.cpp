@@ -69,7 +69,7 @@ void ViewerPanel::draw(const Camera& camera, bool submit) {
     if (show_legend_) {
         ViewerScene& vs = view_.scene();
         const std::string& name = vs.fused.empty() ? vs.scalar_name : vs.fused[0].scalar_name;
-        draw_legend_overlay(vs.volume().transfer_function, name);
+        draw_legend_overlay(vs.volume().transfer_function, name, vs.log_scale);
     }
     if (show_panel_) draw_panel();
     if (show_panel_ && view_.flow()) view_.flow()->draw_seed_outline(camera);

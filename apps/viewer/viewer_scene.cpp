@@ -18,17 +18,35 @@ bool is_scene_file(const std::string& path) {
     return path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
 }
 
-// The scalar `name` on `mesh` (virtual points get 0), and its finite range over the points
-// real tets use. `where`: the file, for errors.
+// log10 of each value, those <= 0 given the smallest positive one's. Error when none is
+// positive. `where`: the file, for errors.
+Status to_decades(std::vector<float>& values, const std::string& name, const std::string& where) {
+    float smallest = std::numeric_limits<float>::infinity();
+    for (float v : values) {
+        if (v > 0.0f) smallest = std::min(smallest, v);
+    }
+    if (!std::isfinite(smallest)) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "--log: array '" + name + "' has no positive value", where);
+    }
+    for (float& v : values) {
+        if (std::isfinite(v)) v = std::log10(std::max(v, smallest));
+    }
+    return {};
+}
+
+// The scalar `name` on `mesh` (virtual points get 0), in decades when `log_scale`, and its
+// finite range over the points real tets use. `where`: the file, for errors.
 Result<std::vector<float>> scalar_values(const TetMesh& mesh, const std::string& where,
                                          const std::string& name, int component, double& lo,
-                                         double& hi) {
+                                         double& hi, bool log_scale = false) {
     std::vector<float> values;
     if (name == kConstant) {
         values.assign(mesh.num_points(), 1.0f);
     } else {
         TR_TRY(values, point_scalar(mesh, name, component));
     }
+    if (log_scale) TR_TRY_STATUS(to_decades(values, name, where));
     lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (std::size_t p = 0; p < values.size(); ++p) {
         if (!std::isfinite(values[p])) {
@@ -57,7 +75,8 @@ Result<std::vector<float>> scalar_values(const TetMesh& mesh, const std::string&
 
 Result<std::vector<float>> scalar_values(const ViewerScene& vs, const std::string& name,
                                          int component, double& lo, double& hi) {
-    return scalar_values(vs.sort.mesh(), vs.volume().mesh.string(), name, component, lo, hi);
+    return scalar_values(vs.sort.mesh(), vs.volume().mesh.string(), name, component, lo, hi,
+                         vs.log_scale);
 }
 
 // The panel's edit of a volume's transfer function over its scalar's range [lo, hi]: a scene's
@@ -163,8 +182,14 @@ Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
     ViewerScene vs;
     const bool scene_mode = is_scene_file(options.input);
     if (scene_mode) {
+        if (options.log_scale) {
+            return make_error(ErrorCode::kInvalidArgument,
+                              "--log is for a mesh file; a scene's transfer function is its own",
+                              options.input);
+        }
         TR_TRY(vs.scene, read_scene(options.input));
     } else {
+        vs.log_scale = options.log_scale;
         vs.scene.volumes.emplace_back();
         vs.volume().mesh = std::filesystem::absolute(options.input);
     }

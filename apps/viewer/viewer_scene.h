@@ -27,6 +27,11 @@ struct ViewerOptions {
     std::string colormap = "viridis";
     double max_opacity = 0;    // largest opacity: of the ramp (0: 0.3), or a scene's points scaled
     double unit_distance = 0;  // 0: the quick default (bounds diagonal / 20) or the scene's
+    // Mesh mode: a log colour scale (`--log`). The viewer shows log10 of the scalar (values
+    // <= 0 as the smallest positive one) under a transfer function in decades, so that the GL
+    // renderer's table stays even in decades; `tetrender render --log` keeps the field and
+    // spreads the transfer function instead, so a cell spanning decades differs a little.
+    bool log_scale = false;
     int width = 960, height = 600;  // mesh mode (a scene file gives its own unless --size)
     bool size_given = false;
     SortMethod sort = SortMethod::kAuto;
@@ -67,7 +72,8 @@ struct ViewerScene {
     PreparedSort sort;                // the mesh (maybe convexified) and adjacency sorted
     std::vector<std::string> arrays;  // point and cell arrays that can be the scalar
     std::string scalar_name;          // in use ("(constant)" when the mesh has none)
-    std::vector<float> scalar;        // one per sort.mesh() point
+    std::vector<float> scalar;        // one per sort.mesh() point (log10 of it with log_scale)
+    bool log_scale = false;           // ViewerOptions::log_scale: `scalar` and `edit` in decades
     TransferEdit edit;
     double longest_edge = 1;
     OpaqueSet opaque;

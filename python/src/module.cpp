@@ -558,7 +558,8 @@ PYBIND11_MODULE(_core, m) {
            int width, int height, const std::string& view, const std::string& colormap,
            const std::string& look, const std::optional<std::array<double, 2>>& range,
            std::optional<double> opacity, std::optional<double> unit_distance, double azimuth,
-           double elevation, double zoom, const std::optional<std::array<double, 3>>& background) {
+           double elevation, double zoom, const std::optional<std::array<double, 3>>& background,
+           bool log) {
             if (look != "fitted" && look != "classic") {
                 bad_argument("look must be 'fitted' or 'classic', not '" + look + "'");
             }
@@ -571,6 +572,7 @@ PYBIND11_MODULE(_core, m) {
             options.view = view;
             options.colormap = colormap;
             options.range = range;
+            options.log_scale = log;
             if (opacity) {
                 options.max_opacity = *opacity;
                 if (!options.opacity_curve.empty())
@@ -590,5 +592,6 @@ PYBIND11_MODULE(_core, m) {
         py::arg("range") = std::nullopt, py::arg("opacity") = std::nullopt,
         py::arg("unit_distance") = std::nullopt, py::arg("azimuth") = 0.0,
         py::arg("elevation") = 0.0, py::arg("zoom") = 1.0, py::arg("background") = std::nullopt,
+        py::arg("log") = false,
         "pipeline/quick_scene.h make_quick_scene: the CLI's quick-look scene of a mesh");
 }

@@ -105,6 +105,21 @@ def test_quick_scene_options_are_the_clis(ring, cli, output_dir):
         tetrender.Scene.quick(ring_mesh(ring), "temperature", look="bold")
 
 
+def test_quick_log_scale_is_the_clis_with_its_legend(ring, cli, output_dir):
+    write_ring(ring, output_dir / "ring.vtu")
+    out = output_dir / "quick_log.pfm"
+    result = run_cli(cli, "render", str(output_dir / "ring.vtu"), "--scalar", "temperature",
+                     "--size", "320x240", "--log", "-o", str(out))
+    assert result.returncode == 0, result.stderr
+    scene = tetrender.Scene.quick(ring_mesh(ring), "temperature", width=320, height=240,
+                                  log=True)
+    # The legend drawn from the scene knows its log axis. Measured: largest difference 0.
+    picture = tetrender.render(scene, dtype=np.float32, legend=True)
+    assert np.abs(picture - read_pfm(out)).max() == 0.0
+    linear = tetrender.Scene.quick(ring_mesh(ring), "temperature", width=320, height=240)
+    assert np.abs(tetrender.render(linear, dtype=np.float32, legend=True) - picture).max() > 0.1
+
+
 def test_scene_errors_carry_the_library_message(ring):
     scene = scene_dict(ring_mesh(ring))
     scene["scalar"] = "pressure"

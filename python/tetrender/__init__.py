@@ -439,6 +439,7 @@ class Scene:
         elevation: float = 0.0,
         zoom: float = 1.0,
         background: tuple[float, float, float] | None = None,
+        log: bool = False,
     ) -> "Scene":
         """The CLI's quick-look scene (``tetrender render mesh --scalar NAME``) of a mesh.
 
@@ -447,7 +448,7 @@ class Scene:
         opacity span the 1st to 99th percentile, the unit distance brings a typical ray through
         the object to opacity 0.8 and the camera fits the object's projected extent from
         ``view`` turned by ``azimuth`` and ``elevation``; ``look="classic"`` is the scene before
-        2026-11. The legend is the CLI's annotation: ``render(..., legend=True)`` draws it.
+        2026-11; ``log=True`` is ``--log`` (colours over log10 of the positive range). The legend is the CLI's annotation: ``render(..., legend=True)`` draws it.
         """
         if isinstance(mesh, (str, os.PathLike)):
             mesh = read(mesh)
@@ -464,7 +465,8 @@ class Scene:
             opacity=None if opacity is None else float(opacity),
             unit_distance=None if unit_distance is None else float(unit_distance),
             azimuth=float(azimuth), elevation=float(elevation), zoom=float(zoom),
-            background=None if background is None else tuple(float(c) for c in background))
+            background=None if background is None else tuple(float(c) for c in background),
+            log=bool(log))
         return scene
 
     @property

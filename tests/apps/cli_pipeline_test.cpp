@@ -339,6 +339,33 @@ TEST(CliQuickLook, ANameThatIsPointAndCellData) {
     std::filesystem::remove_all(dir);
 }
 
+TEST(CliQuickLook, LogScaleAndTheSceneItWrites) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = shell_quote(write_block(dir));
+    const auto at = [&](const std::string& name) { return shell_quote(dir + "/" + name); };
+    const std::string quick = "render " + mesh + " --scalar t --size 64x48 --legend off ";
+    auto run = run_cli(quick + "--log --write-scene " + at("log.json") + " -o " + at("log.png"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    // t = 0 where x = 0 and y z = 0 (5 points): below every decade, counted in a note.
+    EXPECT_NE(run.err.find("--log: 5 of 36 values of 't' are <= 0"), std::string::npos) << run.err;
+    run = run_cli(quick + "-o " + at("linear.png"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(slurp(dir + "/log.png"), slurp(dir + "/linear.png"));
+    // The scene written holds the log scale in its transfer function: the same picture.
+    run = run_cli("render " + at("log.json") + " -o " + at("scene.png"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(slurp(dir + "/log.png"), slurp(dir + "/scene.png"));
+    // With the legend (on by default in quick mode) a log axis, so another picture.
+    run = run_cli("render " + mesh + " --scalar t --size 320x240 --log -o " + at("legend.png"));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    expect_one_line_error(run_cli("render " + at("log.json") + " --log -o " + at("x.png")), 2,
+                          "--log is for quick mode");
+    expect_one_line_error(run_cli(quick + "--log --range 0,1 -o " + at("x.png")), 1,
+                          "--log needs a positive range");
+    EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
+    std::filesystem::remove_all(dir);
+}
+
 TEST(CliQuickLook, AnEmptyPictureIsSaid) {
     const std::string dir = make_temp_dir();
     const std::string mesh = shell_quote(write_block(dir));

@@ -121,6 +121,45 @@ TEST(Annotations, ALegendPerVolumeEachOffTheOthers) {
     EXPECT_NE(one.pixels, annotated.pixels);
 }
 
+TEST(Annotations, AVolumeMadeWithALogScaleGetsALogAxis) {
+    Scene scene = grid_scene();
+    SceneVolume& v = scene.volumes[0];
+    v.transfer_function =
+        log_scaled(make_quick_transfer_function("Cool to Warm", -2.0, 2.0, 0.6, 1.5).value())
+            .value();
+    v.log_scale = true;
+    Pipeline pipeline;
+    Image annotated(scene.width, scene.height, Vec3f(scene.background));
+    ASSERT_TRUE(annotate(annotated, scene, pipeline, AnnotationOptions{}).ok());
+    Image expected(scene.width, scene.height, Vec3f(scene.background));
+    LegendSpec spec;
+    spec.background = Vec3f(scene.background);
+    spec.title = "wave";
+    spec.log_scale = true;
+    const auto layout = draw_legend(expected, v.transfer_function, spec);
+    ASSERT_TRUE(layout.ok());
+    EXPECT_EQ(annotated.pixels, expected.pixels);
+    // Ticks at the decades, 0.1 at a quarter of the bar (log10 -1 of -2 .. 2), and the bar's
+    // colours there those of the map's quarter.
+    const std::vector<double> decades = {0.01, 0.1, 1.0, 10.0, 100.0};
+    ASSERT_EQ(layout->ticks.size(), decades.size());
+    for (std::size_t i = 0; i < decades.size(); ++i) {
+        EXPECT_NEAR(layout->ticks[i], decades[i], 1e-12 * decades[i]);
+    }
+    const TransferFunction map =
+        make_quick_transfer_function("Cool to Warm", -2.0, 2.0, 0.6, 1.5).value();
+    const int row = layout->row_of(0.1);
+    const Vec3f shown = annotated.at((layout->bar.x0 + layout->bar.x1) / 2, row);
+    const Vec3 want = map.color(std::log10(layout->value_at_row(row)));
+    EXPECT_LT(std::abs(shown.x - want.x) + std::abs(shown.y - want.y) + std::abs(shown.z - want.z),
+              3e-3);
+    // Linear, the same transfer function's legend differs.
+    v.log_scale = false;
+    Image linear(scene.width, scene.height, Vec3f(scene.background));
+    ASSERT_TRUE(annotate(linear, scene, pipeline, AnnotationOptions{}).ok());
+    EXPECT_NE(linear.pixels, annotated.pixels);
+}
+
 TEST(Annotations, WrongSizeIsAnError) {
     const Scene scene = grid_scene();
     Pipeline pipeline;

@@ -1,5 +1,6 @@
 // The quick look's automatic choices (pipeline/quick_look.h) against closed forms.
 #include <mesh/tetrahedralize.h>
+#include <project/colormap.h>
 #include <tests/mesh/mixed_grid.h>
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <numbers>
 #include <pipeline/movie.h>
 #include <pipeline/quick_look.h>
+#include <pipeline/quick_scene.h>
 
 namespace tr {
 namespace {
@@ -51,6 +53,78 @@ TEST(UnitDistanceForOpacity, BringsTheMeanChordToTheTarget) {
     EXPECT_EQ(unit_distance_for_opacity(
                   values, [](double) { return 0.0; }, chord, target),
               0.0);
+}
+
+// A box whose field spans 10^-3 .. 10^3 along x, with `zeros` points set to 0.
+TetMesh decades_mesh(int zeros) {
+    TetMesh mesh = box_mesh({1.0, 1.0, 1.0}, 6);
+    Field f;
+    f.name = "p";
+    std::vector<float> values;
+    for (const Vec3& p : mesh.points()) {
+        values.push_back(static_cast<float>(std::pow(10.0, -3.0 + 6.0 * p.x)));
+    }
+    for (int i = 0; i < zeros; ++i) values[static_cast<std::size_t>(i)] = 0.0f;
+    f.values = values;
+    EXPECT_TRUE(mesh.add_point_field(std::move(f)).ok());
+    return mesh;
+}
+
+TEST(QuickScene, LogSpreadsTheColourMapOverTheDecades) {
+    const TetMesh mesh = decades_mesh(3);
+    QuickSceneOptions options;
+    options.scalar = "p";
+    options.range_percent = 0.0;
+    options.log_scale = true;
+    std::vector<std::string> notes;
+    const Scene scene = make_quick_scene("decades.vtu", mesh, options, {}, &notes).value();
+    const SceneVolume& volume = scene.volumes[0];
+    EXPECT_TRUE(volume.log_scale);
+    const TransferFunction& tf = volume.transfer_function;
+    // The map's middle at 1 (the middle decade), its ends at 1e-3 and 1e3.
+    const TransferFunction map = make_quick_transfer_function("viridis", -3, 3, 0.5, 1).value();
+    for (double x : {-3.0, -1.5, 0.0, 2.0, 3.0}) {
+        const Vec3 d = tf.color(std::pow(10.0, x)) - map.color(x);
+        EXPECT_LT(std::max({std::abs(d.r), std::abs(d.g), std::abs(d.b)}), 1e-3) << x;
+    }
+    // The opacity ramp, a fifth of its top at the bottom, is linear in the decades too.
+    EXPECT_NEAR(tf.opacity(1e-3), 0.1, 1e-6);
+    EXPECT_NEAR(tf.opacity(1.0), 0.3, 1e-3);
+    EXPECT_NEAR(tf.opacity(1e3), 0.5, 1e-6);
+    // Zeros take the low end, and a note counts them.
+    EXPECT_EQ(tf.color(0.0), tf.color(1e-3));
+    ASSERT_FALSE(notes.empty());
+    EXPECT_NE(notes[0].find("3 of " + std::to_string(mesh.num_points())), std::string::npos)
+        << notes[0];
+    // Without --log the same field is nearly all the map's low end: 1 sits at 0.1% of it.
+    options.log_scale = false;
+    const Scene linear = make_quick_scene("decades.vtu", mesh, options).value();
+    EXPECT_FALSE(linear.volumes[0].log_scale);
+    const Vec3 low = map.color(-3.0), at_one = linear.volumes[0].transfer_function.color(1.0);
+    EXPECT_LT(std::abs(at_one.g - low.g), 0.01);
+}
+
+TEST(QuickScene, LogRefusesARangeWithoutPositiveValues) {
+    QuickSceneOptions options;
+    options.scalar = "p";
+    options.log_scale = true;
+    const TetMesh mesh = decades_mesh(0);
+    options.range = std::array<double, 2>{0.0, 10.0};
+    const auto zero_start = make_quick_scene("decades.vtu", mesh, options);
+    ASSERT_FALSE(zero_start.ok());
+    EXPECT_NE(zero_start.error().message.find("--log needs a positive range"), std::string::npos);
+    options.range.reset();
+    const TetMesh all_zero = decades_mesh(static_cast<int>(mesh.num_points()));
+    const auto none = make_quick_scene("decades.vtu", all_zero, options);
+    ASSERT_FALSE(none.ok());
+    EXPECT_NE(none.error().message.find("has no positive value"), std::string::npos)
+        << none.error().message;
+    // A positive range given is used in decades: 1e-2 .. 1e2 puts the map's middle at 1.
+    options.range = std::array<double, 2>{1e-2, 1e2};
+    const Scene scene = make_quick_scene("decades.vtu", mesh, options).value();
+    const TransferFunction map = make_quick_transfer_function("viridis", -2, 2, 0.5, 1).value();
+    const Vec3 d = scene.volumes[0].transfer_function.color(1.0) - map.color(0.0);
+    EXPECT_LT(std::max({std::abs(d.r), std::abs(d.g), std::abs(d.b)}), 1e-3);
 }
 
 // Every point inside the picture with the margin free, the extent centred and touching the

@@ -1,12 +1,16 @@
 // The viewer's colour legend (ImGui): drawn at the window's right edge when on (the default),
 // gone with --legend off, never in a plain headless screenshot (those stay equal to the CPU
 // renderer's picture), and a bad --legend value refused in one line.
+#include <apps/viewer/viewer_scene.h>
+#include <mesh/point_data.h>
 #include <tests/support/image_check.h>
 #include <tests/viewer/viewer_runner.h>
 #include <tests/viewer/viewer_test_scene.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -53,6 +57,44 @@ TEST(ViewerLegend, OnByDefaultOffWhenAskedNeverInAPlainScreenshot) {
     // Plain headless screenshots have no ImGui: bit-identical either way.
     ASSERT_EQ(plain_on.width, 240);
     EXPECT_EQ(plain_on.pixels, plain_off.pixels);
+    std::filesystem::remove_all(t.dir);
+}
+
+TEST(ViewerLog, ShowsTheDecadesOfTheMeshScalar) {
+    const testing::TestScene t = testing::make_test_scene(6);
+    viewer::ViewerOptions options;
+    options.input = t.mesh;
+    options.scalar = "blob";
+    options.log_scale = true;
+    auto loaded = viewer::load_viewer_scene(options);
+    ASSERT_TRUE(loaded.ok()) << loaded.error().to_string();
+    const viewer::ViewerScene& vs = *loaded;
+    EXPECT_TRUE(vs.log_scale);
+    // The shown scalar is log10 of the field, values <= 0 as the smallest positive one.
+    const std::vector<float> field = point_scalar(vs.sort.mesh(), "blob", -1).value();
+    float smallest = 1e30f, largest = 0.0f;
+    std::size_t not_positive = 0;
+    for (std::size_t p = 0; p < vs.sort.mesh().num_points(); ++p) {
+        if (field[p] > 0.0f) {
+            smallest = std::min(smallest, field[p]);
+            largest = std::max(largest, field[p]);
+        } else {
+            ++not_positive;
+        }
+    }
+    EXPECT_GT(not_positive, 0u);  // the blob goes negative: the clamp is exercised
+    for (std::size_t p = 0; p < vs.sort.mesh().num_points(); ++p) {
+        ASSERT_FLOAT_EQ(vs.scalar[p], std::log10(std::max(field[p], smallest))) << p;
+    }
+    // The editor's axis is in decades, inside the shown values' range.
+    EXPECT_GE(vs.edit.lo, std::log10(smallest) - 1e-6);
+    EXPECT_LE(vs.edit.hi, std::log10(largest) + 1e-6);
+    EXPECT_GT(vs.edit.hi, vs.edit.lo);
+    // A scene file's transfer function is its own.
+    options.input = t.scene;
+    const auto scene = viewer::load_viewer_scene(options);
+    ASSERT_FALSE(scene.ok());
+    EXPECT_NE(scene.error().message.find("--log is for a mesh file"), std::string::npos);
     std::filesystem::remove_all(t.dir);
 }
 
