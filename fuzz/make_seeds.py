@@ -174,12 +174,216 @@ def vtu_seeds():
     return {"ascii.vtu": vtu(), "raw32.vtu": vtu("raw"), "raw64.vtu": vtu("raw", "UInt64")}
 
 
+# Hand-parsed text formats and the surfaces: the same hexahedron and tetrahedron.
+def tetgen_node(base=0, attributes=True):
+    head = f"# seed\n{len(POINTS)} 3 {1 if attributes else 0} 1\n"
+    rows = [f"{i + base} {p[0]} {p[1]} {p[2]}" + (f" {TEMP[i]}" if attributes else "") + " 0"
+            for i, p in enumerate(POINTS)]
+    return head + "\n".join(rows) + "\n"
+
+
+def tetgen_ele(base=0):
+    # The hexahedron as 5 tets, then the top tet (node ids of CELLS).
+    tets = [(0, 1, 3, 4), (1, 2, 3, 6), (1, 4, 5, 6), (3, 4, 6, 7), (1, 3, 4, 6), (4, 5, 6, 8)]
+    rows = [f"{c + base} " + " ".join(str(i + base) for i in t) + f" {c % 2}"
+            for c, t in enumerate(tets)]
+    return f"{len(tets)} 4 1\n" + "\n".join(rows) + "\n"
+
+
+def cube_faces():
+    quads = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    return quads
+
+
+def tetgen_poly(base=0, with_points=True):
+    pts = POINTS[:8]
+    out = [f"{len(pts) if with_points else 0} 3 0 0"]
+    if with_points:
+        out += [f"{i + base} {p[0]} {p[1]} {p[2]}" for i, p in enumerate(pts)]
+    out.append(f"{len(cube_faces())} 1")
+    for q in cube_faces():
+        out += ["1 0 1", "4 " + " ".join(str(i + base) for i in q)]
+    out += ["1", f"1 0.5 0.5 0.5"]
+    return "\n".join(out) + "\n"
+
+
+def tetgen_seeds():
+    # Byte 0 picks what is read (0 .node, 1 .ele, 2 .poly); a NUL separates the second file.
+    node0, node1 = tetgen_node(0), tetgen_node(1, False)
+    return {"node_ele.bin": b"\x00" + node0.encode() + b"\x00" + tetgen_ele(0).encode(),
+            "node_only.bin": b"\x00" + node1.encode(),
+            "ele_node.bin": b"\x01" + tetgen_ele(1).encode() + b"\x00" + node1.encode(),
+            "poly.bin": b"\x02" + tetgen_poly().encode(),
+            "poly1.bin": b"\x02" + tetgen_poly(1).encode(),
+            "poly_node.bin": b"\x02" + tetgen_poly(0, False).encode() + b"\x00" +
+                             tetgen_node(0, False).encode()}
+
+
+def csv_seeds():
+    rows = ["x,y,z,temp,\"p\""] + [f"{p[0]},{p[1]},{p[2]},{t},{-t}" for p, t in zip(POINTS, TEMP)]
+    return {"points.csv": ("\n".join(rows) + "\n").encode(),
+            "crlf.csv": ("\r\n".join(["X, Y, Z", "0, 0, 0", "1e0, +2, -3.5e-1", " 4 ,5,6"]) +
+                         "\r\n").encode()}
+
+
+def mfem_mesh():
+    out = ["MFEM mesh v1.0", "", "# seed", "dimension", "3", "", "elements", "4",
+           "1 5 0 1 2 3 4 5 6 7", "2 4 4 5 6 8", "3 6 0 1 2 4 5 6", "4 7 0 1 2 3 8",
+           "", "boundary", "1", "1 3 0 1 2 3", "", "vertices", str(len(POINTS)), "3"]
+    out += [" ".join(str(c) for c in p) for p in POINTS]
+    return ("\n".join(out) + "\n\nmfem_mesh_end\n").encode()
+
+
+def off_file(colored=False):
+    out = ["COFF" if colored else "OFF", f"8 {len(cube_faces()) + 1} 0"]
+    out += [" ".join(str(c) for c in p) + (" 1 0 0 1" if colored else "") for p in POINTS[:8]]
+    out += ["4 " + " ".join(map(str, q)) for q in cube_faces()]
+    out.append("3 0 1 2")
+    return "\n".join(out) + "\n"
+
+
+def stl_triangles():
+    tris = []
+    for a, b, c, d in cube_faces():
+        tris += [(a, b, c), (a, c, d)]
+    return [[POINTS[i] for i in t] for t in tris]
+
+
+def stl_ascii():
+    out = ["solid seed"]
+    for tri in stl_triangles():
+        out += ["  facet normal 0 0 0", "    outer loop"]
+        out += [f"      vertex {p[0]} {p[1]} {p[2]}" for p in tri]
+        out += ["    endloop", "  endfacet"]
+    return "\n".join(out + ["endsolid seed"]) + "\n"
+
+
+def stl_binary():
+    tris = stl_triangles()
+    out = b"binary seed".ljust(80, b" ") + struct.pack("<I", len(tris))
+    for tri in tris:
+        out += struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *p) for p in tri)
+        out += b"\x00\x00"
+    return out
+
+
+def ply(fmt="ascii"):
+    pts, faces = POINTS[:8], cube_faces()
+    head = (f"ply\nformat {fmt} 1.0\ncomment seed\nelement vertex {len(pts)}\n"
+            "property float x\nproperty float y\nproperty float z\n"
+            f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
+    if fmt == "ascii":
+        body = "".join(f"{p[0]} {p[1]} {p[2]}\n" for p in pts)
+        body += "".join("4 " + " ".join(map(str, q)) + "\n" for q in faces)
+        return (head + body).encode()
+    e = "<" if fmt == "binary_little_endian" else ">"
+    body = b"".join(struct.pack(f"{e}3f", *p) for p in pts)
+    body += b"".join(struct.pack(f"{e}B4i", 4, *q) for q in faces)
+    return head.encode() + body
+
+
+def obj():
+    out = ["# seed", "o cube"] + [f"v {p[0]} {p[1]} {p[2]}" for p in POINTS[:8]]
+    out += ["vn 0 0 1", "vt 0 0"]
+    out += ["f " + " ".join(f"{i + 1}/1/1" for i in q) for q in cube_faces()[:3]]
+    out += ["f " + " ".join(str(i + 1) for i in q) for q in cube_faces()[3:]]
+    return "\n".join(out) + "\n"
+
+
+def surface_seeds():
+    # Byte 0 picks the extension: 0 .off, 1 .stl, 2 .ply, 3 .obj.
+    return {"cube.off": b"\x00" + off_file().encode(), "cube_color.off": b"\x00" +
+            off_file(True).encode(), "ascii.stl": b"\x01" + stl_ascii().encode(),
+            "binary.stl": b"\x01" + stl_binary(), "ascii.ply": b"\x02" + ply(),
+            "le.ply": b"\x02" + ply("binary_little_endian"),
+            "be.ply": b"\x02" + ply("binary_big_endian"), "cube.obj": b"\x03" + obj().encode()}
+
+
+class Provider:
+    """Bytes in the order FuzzedDataProvider consumes them (integers from the end of the
+    input, most significant byte first); bytes() gives the input."""
+
+    def __init__(self):
+        self.stream = []
+
+    def byte(self, v):
+        self.stream.append(v & 0xFF)
+        return self
+
+    def coord(self, v):  # fuzz_double's grid values -4..4 (selector < 150)
+        return self.byte(int(v) + 4)
+
+    def id(self, v):  # fuzz_id: a valid id (selector < 240, then one byte when < 256 points)
+        return self.byte(0).byte(v)
+
+    def u64(self, v):
+        for k in range(7, -1, -1):
+            self.byte(v >> (8 * k))
+        return self
+
+    def bytes(self):
+        return bytes(reversed(self.stream))
+
+
+def pipeline_tail(p, scalars):
+    p.u64(12345).byte(8).byte(1)  # camera seed, max_fallback_cells, pairwise order
+    p.byte(2).coord(-1)  # 2 control points, the first at -1
+    for k in range(2):  # colour (3 probabilities), opacity, the step to the next point
+        p.u64(0x3F << 56).u64(0x7F << 56).u64(0xBF << 56).u64((0x40 << 56) * (k + 1)).coord(2)
+    p.coord(1)  # unit distance
+    for s in scalars:
+        p.coord(s)
+    return p.u64(1 << 62).u64(1 << 61).u64(1 << 60)  # background
+
+
+def mesh_pipeline_seeds():
+    # Byte 0 (consumed first): bit 0 create path (0 TetMesh::create, 1 tetrahedralize), bits
+    # 1-2 sort method, bits 3-4 integrator, bit 5 orthographic, bit 6 camera inside.
+    pts = [p for p in POINTS]
+    tets = [(0, 1, 3, 4), (1, 2, 3, 6), (1, 4, 5, 6), (3, 4, 6, 7), (1, 3, 4, 6), (4, 5, 6, 8)]
+    seeds = {}
+    for mode in (0x00, 0x0A, 0x14, 0x26, 0x48, 0x32):
+        p = Provider().byte(mode).byte(len(pts))
+        for q in pts:
+            for c in q:
+                p.coord(c)
+        p.byte(len(tets))
+        for t in tets:
+            for i in t:
+                p.id(i)
+        p.byte(0)  # default degenerate tolerance
+        seeds[f"tets_{mode:02x}.bin"] = pipeline_tail(p, [i % 5 - 2 for i in range(len(pts))]).bytes()
+    # Mixed cells through make_unstructured_mesh + tetrahedralize: the hexahedron and the tet,
+    # a wedge and a pyramid on the same points; a second copy with explicit offsets.
+    cells = [(0, [0, 1, 2, 3, 4, 5, 6, 7]), (5, [4, 5, 6, 8]), (2, [0, 1, 2, 4, 5, 6]),
+             (3, [0, 1, 2, 3, 8])]  # index into fuzz_mesh's kTypes: 12, 10, 13, 14
+    for mode, explicit in ((0x01, 0), (0x0F, 1), (0x53, 0)):
+        p = Provider().byte(mode).byte(len(pts))
+        for q in pts:
+            for c in q:
+                p.coord(c)
+        p.byte(len(cells)).byte(explicit)
+        for kind, ids in cells:
+            p.byte([12, 10, 13, 14, 11, 24, 25, 26, 27, 15, 16, 5, 9, 42].index(
+                {0: 12, 5: 10, 2: 13, 3: 14}[kind]))
+            if explicit:
+                p.byte(1)
+            for i in ids:
+                p.byte(1).id(i)
+        p.byte(1).byte(0).byte(0)  # merge points, no tolerance, unsupported cells are errors
+        seeds[f"mixed_{mode:02x}.bin"] = pipeline_tail(p, [i % 3 for i in range(len(pts))]).bytes()
+    return seeds
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
     out = sys.argv[1]
     for target, seeds in [("scene", scene_seeds()), ("colormap_preset", colormap_seeds()),
-                          ("legacy_vtk", legacy_seeds()), ("vtu", vtu_seeds())]:
+                          ("legacy_vtk", legacy_seeds()), ("vtu", vtu_seeds()),
+                          ("tetgen", tetgen_seeds()), ("csv", csv_seeds()),
+                          ("mfem", {"mixed.mesh": mfem_mesh()}), ("surface", surface_seeds()),
+                          ("mesh_pipeline", mesh_pipeline_seeds())]:
         os.makedirs(os.path.join(out, target), exist_ok=True)
         for name, data in seeds.items():
             with open(os.path.join(out, target, name), "wb") as f:

@@ -28,6 +28,11 @@ bool orient_or_reject(const std::vector<Vec3>& points, Tet& tet, double toleranc
     if (!(std::abs(six_volume) > tolerance * l2 * std::sqrt(l2))) return false;
     if (six_volume < 0) {
         std::swap(tet[2], tet[3]);
+        // orient3d of the flipped tet is another rounding of the same determinant: for a tet
+        // flat to within rounding (kept when the tolerance is 0, as Delaunay meshes are) it can
+        // come out <= 0 too. Such a tet has no orientation to give: it is degenerate.
+        if (!(orient3d(points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]]) > 0))
+            return false;
         ++report.num_reoriented;
     }
     return true;

@@ -114,13 +114,17 @@ std::vector<PointId> find_coincident_points(const std::vector<Vec3>& points,
         max_radius = std::max(max_radius, radius[i]);
     }
     if (max_radius <= 0) return find_coincident_points(points, 0.0, {});
+    // The cube index along one axis, clamped to +-2^62 (coordinates far beyond the radius: a
+    // double beyond int64 would be undefined behaviour, and points within the radius of each
+    // other still land in the same or adjacent cubes); the hash in unsigned (wrapping)
+    // arithmetic.
+    auto cube = [&](double c, int d) {
+        constexpr double kLimit = 4.611686018427387904e18;  // 2^62
+        const double q = std::clamp(std::floor(c / max_radius), -kLimit, kLimit);
+        return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::isnan(q) ? 0.0 : q) + d);
+    };
     auto key_of = [&](const Vec3& p, int dx, int dy, int dz) {
-        const auto ix = static_cast<std::int64_t>(std::floor(p.x / max_radius)) + dx;
-        const auto iy = static_cast<std::int64_t>(std::floor(p.y / max_radius)) + dy;
-        const auto iz = static_cast<std::int64_t>(std::floor(p.z / max_radius)) + dz;
-        return static_cast<std::uint64_t>(ix * 73856093) ^
-               static_cast<std::uint64_t>(iy * 19349663) ^
-               static_cast<std::uint64_t>(iz * 83492791);
+        return cube(p.x, dx) * 73856093u ^ cube(p.y, dy) * 19349663u ^ cube(p.z, dz) * 83492791u;
     };
     std::unordered_multimap<std::uint64_t, PointId> grid;
     grid.reserve(n);

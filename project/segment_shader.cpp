@@ -610,7 +610,13 @@ std::optional<Integrator> parse_integrator(std::string_view name) {
 }
 
 SegmentShader::SegmentShader(const TransferFunction& tf, Integrator integrator, double max_length)
-    : tf_(tf), integrator_(integrator), max_length_(std::max(max_length, 1e-300)) {
+    // An edge of a mesh with coordinates beyond 1e154 overflows to inf: the largest double
+    // instead, so that the exp texture's coordinates (length / max_length) stay finite (inf /
+    // inf made its index NaN, cast to int: a read far outside the table).
+    : tf_(tf),
+      integrator_(integrator),
+      max_length_(std::isfinite(max_length) ? std::max(max_length, 1e-300)
+                                            : std::numeric_limits<double>::max()) {
     s_lo_ = tf.s_min();
     s_hi_ = tf.s_max();
     if (!(s_hi_ > s_lo_)) s_hi_ = s_lo_ + 1.0;
@@ -747,7 +753,10 @@ ShadedSegment SegmentShader::exact(double s_front, double s_back, double length)
 
 ShadedSegment SegmentShader::exp_texture(double s_front, double s_back, double length) const {
     if (!(length > 0)) return {Vec3f(0.0f), 0.0f};
-    if (length > max_length_ || kappa_max_ <= 0) return exact(s_front, s_back, length);
+    // An infinite largest extinction (a unit distance of 1e-320 makes -ln(1 - a) / d
+    // overflow): the texture's row v / kappa_max would be inf / inf; integrated directly.
+    if (length > max_length_ || !(kappa_max_ > 0) || !std::isfinite(kappa_max_))
+        return exact(s_front, s_back, length);
     const double v = 0.5 * (tf_.extinction(s_front) + tf_.extinction(s_back));
     const double x = length / max_length_ * (kExpSize - 1);
     const double y = v / kappa_max_ * (kExpSize - 1);

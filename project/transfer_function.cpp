@@ -9,7 +9,9 @@ namespace {
 
 template <class Point, class Value, class Get>
 Value piecewise_linear(const std::vector<Point>& points, double s, Get get) {
-    if (s <= points.front().s) return get(points.front());
+    // A NaN scalar (a renderer's interpolation in a degenerate cell) takes the first point's
+    // value: upper_bound would return the end, and *hi read past the points.
+    if (!(s > points.front().s)) return get(points.front());
     if (s >= points.back().s) return get(points.back());
     auto hi = std::upper_bound(points.begin(), points.end(), s,
                                [](double x, const Point& p) { return x < p.s; });

@@ -78,6 +78,12 @@ void check_vtk_legacy(const fs::path& path, const std::string& want_dataset);
 // body (ASCII: tokens per line; binary: sizes and list lengths) so that it fits the file.
 void check_ply(const fs::path& path);
 
+// OBJ (text_readers.cpp): every index of every face, line and point element ('f', 'l', 'p')
+// refers to a vertex, texture coordinate or normal the file has (VTK 9.1's reader dereferences
+// a missing one: `f 1/1 2/1 3/1` without any `vt` is a SIGSEGV). Throws IoError (kParse)
+// naming the line. Cost: O(file size).
+void check_obj(const fs::path& path);
+
 // VTK XML pre-checks and scanners (xml_checks.cpp).
 // The value of attribute `name` in the tag starting at or after `from` (up to its '>'), or "".
 std::string xml_attribute(const std::string& text, std::size_t from, const std::string& name);

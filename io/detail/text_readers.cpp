@@ -1,4 +1,5 @@
-// Hand-parsed text formats: TetGen .node/.ele/.poly, CSV point clouds, MFEM mesh v1.0, OFF.
+// Hand-parsed text formats: TetGen .node/.ele/.poly, CSV point clouds, MFEM mesh v1.0, OFF;
+// the OBJ pre-check.
 // Errors name path:line.
 
 #include <io/detail/common.h>
@@ -111,6 +112,17 @@ class LineReader {
         return static_cast<std::size_t>(v);
     }
 
+    // `rows` lines of `values` numbers each need at least 2 bytes a number (a digit and a
+    // separator): refuses counts the file cannot hold before anything is allocated for them
+    // (a count and an attribute count each below the file size still multiply to terabytes).
+    void check_fits(std::size_t rows, std::size_t values, const char* what) const {
+        if (rows != 0 && values > (text_.size() + 1) / 2 / rows) {
+            error(std::to_string(rows) + " " + what + " of " + std::to_string(values) +
+                  " values each cannot fit in a file of " + std::to_string(text_.size()) +
+                  " bytes");
+        }
+    }
+
     double fraction_done() const {
         return text_.empty() ? 1.0 : static_cast<double>(pos_) / static_cast<double>(text_.size());
     }
@@ -150,6 +162,7 @@ struct NodeList {
 NodeList read_node_list(LineReader& in, std::vector<std::string_view>& t, std::size_t count,
                         std::size_t num_attributes, std::size_t num_markers) {
     NodeList nodes;
+    in.check_fits(count, 4 + num_attributes, "points");
     nodes.points.resize(count);
     std::vector<std::vector<double>> attributes(num_attributes, std::vector<double>(count));
     for (std::size_t i = 0; i < count; ++i) {
@@ -238,6 +251,7 @@ UnstructuredMesh read_tetgen(const fs::path& path, const ProgressRange& progress
         in.error("nodes per tetrahedron must be 4 or 10, not " + std::to_string(per));
     const std::size_t num_attributes = t.size() > 2 ? in.to_count(t[2], "attribute count") : 0;
     const CellType type = per == 4 ? CellType::kTetra : CellType::kQuadraticTetra;
+    in.check_fits(count, 1 + static_cast<std::size_t>(per) + num_attributes, "tetrahedra");
     std::vector<std::vector<double>> attributes(num_attributes, std::vector<double>(count));
     mesh.offsets.reserve(count + 1);
     mesh.offsets.push_back(0);
@@ -249,17 +263,22 @@ UnstructuredMesh read_tetgen(const fs::path& path, const ProgressRange& progress
                     "index, nodes and attributes");
         const std::int64_t id = in.to_int(t[0], "tetrahedron index");
         if (c == 0) first_id = id;
-        if (id != first_id + static_cast<std::int64_t>(c)) {
+        // A first index near 2^63: the expected one would overflow.
+        std::int64_t expected = 0;
+        if (__builtin_add_overflow(first_id, static_cast<std::int64_t>(c), &expected) ||
+            id != expected) {
             in.error("tetrahedron index " + std::to_string(id) + " out of sequence");
         }
         for (std::int64_t k = 0; k < per; ++k) {
-            const std::int64_t node = in.to_int(t[1 + k], "node index") - nodes.base;
-            if (node < 0 || node >= static_cast<std::int64_t>(mesh.points.size())) {
+            const std::int64_t given = in.to_int(t[1 + k], "node index");
+            // Compared before subtracting the base: -2^63 - 1 would overflow.
+            if (given < nodes.base ||
+                given - nodes.base >= static_cast<std::int64_t>(mesh.points.size())) {
                 in.error("tetrahedron " + std::to_string(id) + " uses node " +
-                             std::to_string(node + nodes.base) + ", not in the .node file",
+                             std::to_string(given) + ", not in the .node file",
                          ErrorCode::kInvalidMesh);
             }
-            mesh.connectivity.push_back(node);
+            mesh.connectivity.push_back(given - nodes.base);
         }
         for (std::size_t a = 0; a < num_attributes; ++a) {
             attributes[a][c] = in.to_double(t[1 + static_cast<std::size_t>(per) + a], "attribute");
@@ -349,6 +368,8 @@ UnstructuredMesh read_mfem(const fs::path& path, const ProgressRange& progress) 
                          ErrorCode::kUnsupported);
             }
         } else if (key == "elements") {
+            // A second section would restart the offsets inside the first one's cells.
+            if (have_elements) in.error("a second 'elements' section");
             in.expect(t, "the element count");
             const std::size_t count = in.to_count(t[0], "element count");
             mesh.offsets.push_back(0);
@@ -406,6 +427,7 @@ UnstructuredMesh read_mfem(const fs::path& path, const ProgressRange& progress) 
             for (std::size_t e = 0; e < count; ++e)
                 in.expect(t, "boundary element " + std::to_string(e));
         } else if (key == "vertices") {
+            if (have_vertices) in.error("a second 'vertices' section");
             in.expect(t, "the vertex count");
             const std::size_t count = in.to_count(t[0], "vertex count");
             in.expect(t, "the vertex dimension");
@@ -523,8 +545,16 @@ SurfaceMesh read_poly(const fs::path& path) {
             const std::size_t n = in.to_count(t[0], "corner count");
             need_tokens(in, t, 1 + n, "corner indices");
             corners.resize(n);
-            for (std::size_t k = 0; k < n; ++k)
-                corners[k] = in.to_int(t[1 + k], "corner index") - nodes.base;
+            for (std::size_t k = 0; k < n; ++k) {
+                const std::int64_t given = in.to_int(t[1 + k], "corner index");
+                // Compared before subtracting the base: -2^63 - 1 would overflow.
+                if (given < nodes.base) {
+                    in.error("polygon uses point " + std::to_string(given) + ", below the first (" +
+                                 std::to_string(nodes.base) + ")",
+                             ErrorCode::kInvalidMesh);
+                }
+                corners[k] = given - nodes.base;
+            }
             if (n >= 3)
                 fan_triangulate(corners, surface.triangles, surface.points.size(), in.where());
         }
@@ -535,12 +565,118 @@ SurfaceMesh read_poly(const fs::path& path) {
         for (std::size_t h = 0; h < num_holes; ++h) {
             in.expect(t, "hole " + std::to_string(h));
             need_tokens(in, t, 4, "index x y z");
-            surface.holes.emplace_back(in.to_double(t[1], "x"), in.to_double(t[2], "y"),
-                                       in.to_double(t[3], "z"));
+            const Vec3 hole(in.to_double(t[1], "x"), in.to_double(t[2], "y"),
+                            in.to_double(t[3], "z"));
+            if (!std::isfinite(hole.x) || !std::isfinite(hole.y) || !std::isfinite(hole.z)) {
+                in.error("hole " + std::to_string(h) + " has a non-finite coordinate",
+                         ErrorCode::kInvalidMesh);
+            }
+            surface.holes.push_back(hole);
         }
         // Part 4 (regional attributes) is not needed for a surface.
     }
     return surface;
+}
+
+void check_obj(const fs::path& path) {
+    const std::string text = read_all(path);
+    if (text.find('\0') != std::string::npos)
+        fail(ErrorCode::kParse, "not an OBJ file: binary data in a text format", path.string());
+    // Lines as VTK's OBJ reader takes them: '#' starts a comment, a '\' at the end of a line
+    // continues it. First pass: how many v, vt and vn the file has; second pass: every index
+    // of every f, l and p line refers to one (k > 0: the k-th of the file; k < 0: counted back
+    // from the last one read so far), which VTK 9.1 does not check before it reads them.
+    struct Line {
+        std::string_view text;
+        int number;
+    };
+    std::vector<Line> lines;
+    int number = 0;
+    for (std::size_t pos = 0; pos < text.size();) {
+        const std::size_t nl = text.find('\n', pos);
+        std::string_view line(text.data() + pos,
+                              (nl == std::string::npos ? text.size() : nl) - pos);
+        pos = nl == std::string::npos ? text.size() : nl + 1;
+        ++number;
+        const std::size_t hash = line.find('#');
+        if (hash != std::string_view::npos) line = line.substr(0, hash);
+        lines.push_back({line, number});
+    }
+    auto blank = [](char c) {
+        return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+    };
+    auto tokens_of = [&](std::string_view line) {
+        std::vector<std::string_view> tokens;
+        std::size_t p = 0;
+        while (p < line.size()) {
+            while (p < line.size() && blank(line[p])) ++p;
+            std::size_t q = p;
+            while (q < line.size() && !blank(line[q])) ++q;
+            if (q > p) tokens.push_back(line.substr(p, q - p));
+            p = q;
+        }
+        return tokens;
+    };
+    std::int64_t totals[3] = {0, 0, 0};  // v, vt, vn
+    for (const Line& line : lines) {
+        const auto t = tokens_of(line.text);
+        if (t.empty()) continue;
+        if (t[0] == "v") ++totals[0];
+        if (t[0] == "vt") ++totals[1];
+        if (t[0] == "vn") ++totals[2];
+    }
+    static constexpr const char* kWhat[3] = {"vertex", "texture coordinate", "normal"};
+    std::int64_t seen[3] = {0, 0, 0};
+    bool continued = false;  // the previous line ended in '\' inside an f, l or p
+    char element = 0;
+    for (const Line& line : lines) {
+        auto t = tokens_of(line.text);
+        const std::string where = path.string() + ":" + std::to_string(line.number);
+        std::size_t first = 1;
+        if (continued) {
+            first = 0;
+        } else {
+            if (t.empty()) continue;
+            if (t[0] == "v") ++seen[0];
+            if (t[0] == "vt") ++seen[1];
+            if (t[0] == "vn") ++seen[2];
+            if (t[0] != "f" && t[0] != "l" && t[0] != "p") continue;
+            element = t[0][0];
+        }
+        continued = !t.empty() && t.back() == "\\";
+        if (continued) t.pop_back();
+        for (std::size_t k = first; k < t.size(); ++k) {
+            // v, v/vt, v//vn, v/vt/vn (l: v, v/vt; p: v); empty parts are absent.
+            std::string_view rest = t[k];
+            for (int part = 0; part < 3; ++part) {
+                const std::size_t slash = rest.find('/');
+                const std::string_view field = rest.substr(0, slash);
+                if (!field.empty() || part == 0) {
+                    std::int64_t id = 0;
+                    const auto [end, ec] =
+                        std::from_chars(field.data(), field.data() + field.size(), id);
+                    if (ec != std::errc() || end != field.data() + field.size() ||
+                        (element == 'p' && part > 0) || (element == 'l' && part > 1)) {
+                        fail(ErrorCode::kParse,
+                             std::string("OBJ: bad index '") + std::string(t[k]) + "' in an '" +
+                                 element + "' line",
+                             where);
+                    }
+                    const bool ok = id > 0 ? id <= totals[part] : id < 0 && -id <= seen[part];
+                    if (!ok) {
+                        fail(ErrorCode::kParse,
+                             std::string("OBJ: '") + element + "' line uses " + kWhat[part] + " " +
+                                 std::to_string(id) + " but the file has " +
+                                 std::to_string(id < 0 ? seen[part] : totals[part]) +
+                                 (id < 0 ? " before it" : ""),
+                             where);
+                    }
+                }
+                if (slash == std::string_view::npos) break;
+                rest = rest.substr(slash + 1);
+            }
+        }
+    }
 }
 
 }  // namespace tr::io_detail

@@ -700,9 +700,7 @@ SurfaceMesh read_vtk_surface(const fs::path& path, const std::string& ext) {
         reader = r;
         what = "PLY";
     } else if (ext == ".obj") {
-        if (read_head(path, 1 << 16).find('\0') != std::string::npos) {
-            fail(ErrorCode::kParse, "not an OBJ file: binary data in a text format", where);
-        }
+        check_obj(path);
         auto r = vtkSmartPointer<vtkOBJReader>::New();
         r->SetFileName(path.c_str());
         reader = r;
