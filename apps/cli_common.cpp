@@ -31,6 +31,10 @@ ProgressFn terminal_progress() {
     };
 }
 
+bool is_scene_file(const std::string& path) {
+    return path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
+}
+
 bool parse_image_size(const std::string& text, int& width, int& height) {
     const auto x = text.find('x');
     if (x == std::string::npos || x == 0 || x + 1 >= text.size() || x > 5 ||

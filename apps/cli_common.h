@@ -22,6 +22,10 @@ inline constexpr int kExitUsage = 2;  // bad command line
 // otherwise, so logs and pipes stay clean).
 ProgressFn terminal_progress();
 
+// Whether `path` names a scene file (.json) rather than a mesh: how render and the viewer tell
+// a scene from a quick look.
+bool is_scene_file(const std::string& path);
+
 // Parses "WxH" with both sides in [1, kMaxImageSide] (project/scene.h).
 bool parse_image_size(const std::string& text, int& width, int& height);
 

@@ -2,6 +2,7 @@
 // its headless screenshot mode for tests and benchmarks. This file: the command line and the
 // start-up (display, GL context, ImGui); the rest of the viewer is in its neighbours.
 #include <apps/cli_common.h>
+#include <apps/quick_look_args.h>
 #include <apps/viewer/headless_orbit.h>
 #include <apps/viewer/interactive_loop.h>
 #include <apps/viewer/viewer_panel.h>
@@ -48,7 +49,9 @@ struct Args {
     std::string colormap;
     double opacity = 0;
     double unit_distance = 0;
-    bool log_scale = false;
+    int time_step = 0;
+    apps::QuickLookArgs quick;  // mesh mode: the quick look's options beyond the four above
+    std::vector<std::string> quick_given;  // those given (refused with a scene file)
     bool panel_in_screenshot = false;
     std::string legend = "on";  // the colour legend (ImGui): on or off
     int exit_after_frames = 0;  // interactive mode: quit after this many frames (tests)
@@ -90,11 +93,26 @@ int fail(const std::string& message) {
 int run(const Args& args) {
     ViewerOptions options;
     options.input = args.input;
-    options.scalar = args.scalar;
     options.colormap = args.colormap;
     options.max_opacity = args.opacity;
     options.unit_distance = args.unit_distance;
-    options.log_scale = args.log_scale;
+    if (!apps::is_scene_file(args.input)) {
+        // A mesh: the quick look `tetrender render` makes, with the same options.
+        apps::QuickLookArgs quick = args.quick;
+        quick.scalar = args.scalar;
+        if (!args.colormap.empty()) quick.colormap = args.colormap;
+        if (args.opacity > 0) quick.opacity = args.opacity;
+        if (args.unit_distance > 0) quick.unit_distance = args.unit_distance;
+        auto made = apps::quick_scene_options(quick);
+        if (!made.ok()) return apps::report_error(made.error());
+        options.quick = std::move(made).value();
+        options.quick.time_step = args.time_step;
+        options.file = apps::quick_file_options(quick);
+    } else if (!args.quick_given.empty()) {
+        std::fprintf(stderr, "tetrender-view: %s is for a mesh file; a scene file says it itself\n",
+                     args.quick_given.front().c_str());
+        return apps::kExitUsage;
+    }
     if (!args.flowvol_vectors.empty()) {
         FlowVolumeSpec spec = args.flow;
         spec.vectors = args.flowvol_vectors;
@@ -179,6 +197,10 @@ int run(const Args& args) {
                      "tetrahedra cannot order the cells of intersecting meshes\n",
                      vs.fused.size(), fused_mode_name(vs.fused_mode).data());
     }
+    // Headless, the quick look's notes come after the picture, so that an error found while
+    // drawing (a seed outside the mesh) stays one line.
+    const std::vector<std::string> notes = std::move(vs.notes);
+    if (!headless) apps::print_notes(notes);
     if (!vs.sort.note.empty() && vs.fused.empty())
         std::fprintf(stderr, "tetrender-view: note: %s\n", vs.sort.note.c_str());
     if (vs.scene.flow_volume && vs.scene.flow_volume->context) {
@@ -264,6 +286,7 @@ int run(const Args& args) {
         }
     }
     glfwDestroyWindow(window);
+    if (headless && code == apps::kExitOk) apps::print_notes(notes);
     return code;
 }
 
@@ -311,16 +334,19 @@ int main(int argc, char** argv) {
                    "pbvr-object)")
         ->check(CLI::Range(1, tr::viewer::kMaxBatch));
     app.add_option("--colormap", args.colormap,
-                   "viridis, coolwarm, inferno, gray (default: the scene's colours, or viridis)");
+                   "viridis, coolwarm, inferno, gray or a ParaView preset name (default: the "
+                   "scene's colours, or viridis)");
     app.add_option(
            "--opacity", args.opacity,
-           "Largest opacity: of the ramp (default 0.3), or a scene's opacity points scaled to it")
+           "Largest opacity: a mesh's ramp's top (default 0.5, as `tetrender render`), or a "
+           "scene's opacity points scaled to it")
         ->check(CLI::Range(0.0, 0.999));
-    app.add_flag("--log", args.log_scale,
-                 "Mesh mode: a log colour scale (log10 of the scalar, values <= 0 as the "
-                 "smallest positive one; the legend's ticks at powers of ten)");
+    app.add_option("--time-step", args.time_step, "Mesh mode: the time step to read (default 0)")
+        ->check(CLI::NonNegativeNumber);
+    tr::apps::add_quick_look_options(app, args.quick, false, "Mesh mode: ");
     app.add_option("--unit-distance", args.unit_distance,
-                   "Unit distance of the opacities (default: the scene's, or diagonal / 20)")
+                   "Unit distance of the opacities (default: the scene's, or for a mesh the "
+                   "quick look's: a typical ray through the object reaches opacity 0.8)")
         ->check(CLI::PositiveNumber);
     auto* vectors = app.add_option("--flowvol-vectors", args.flowvol_vectors,
                                    "Flow volume: grow the dye through this 3-component point "
@@ -368,6 +394,8 @@ int main(int argc, char** argv) {
         ->group("");
     try {
         app.parse(argc, argv);
+        args.quick_given = tr::apps::quick_look_options_given(app);
+        if (app.count("--time-step") > 0) args.quick_given.push_back("--time-step");
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? 0 : tr::apps::kExitUsage;
     }

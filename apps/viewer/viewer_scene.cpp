@@ -6,17 +6,12 @@
 
 #include <cmath>
 #include <limits>
-#include <pipeline/quick_look.h>
 #include <pipeline/quick_scene.h>
 
 namespace tr::viewer {
 namespace {
 
 constexpr const char* kConstant = "(constant)";
-
-bool is_scene_file(const std::string& path) {
-    return path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
-}
 
 // log10 of each value, those <= 0 given the smallest positive one's. Error when none is
 // positive. `where`: the file, for errors.
@@ -79,16 +74,14 @@ Result<std::vector<float>> scalar_values(const ViewerScene& vs, const std::strin
                          vs.log_scale);
 }
 
-// The panel's edit of a volume's transfer function over its scalar's range [lo, hi]: a scene's
-// own points (with --opacity scaling them), or --colormap's ramp; --unit-distance over all.
-// `bounds`: the mesh's; mesh mode's unit distance from `values` (the scalar) and `chord` (the
-// mesh's mean chord length).
-TransferEdit initial_edit(const ViewerOptions& options, bool scene_mode, const TransferFunction& tf,
-                          double lo, double hi, const Bounds3& bounds,
-                          std::span<const float> values = {}, double chord = 0) {
+// The panel's edit of a scene's volume's transfer function over its scalar's range [lo, hi]:
+// the scene's own points (with --opacity scaling them), or --colormap's ramp; --unit-distance
+// over all.
+TransferEdit initial_edit(const ViewerOptions& options, const TransferFunction& tf, double lo,
+                          double hi) {
     TransferEdit edit;
     edit.lo = lo, edit.hi = hi;
-    if (scene_mode && options.colormap.empty()) {
+    if (options.colormap.empty()) {
         edit.scene_colors = tf.color_points();
         edit.opacity = tf.opacity_points();
         edit.unit_distance = tf.unit_distance();
@@ -99,25 +92,43 @@ TransferEdit initial_edit(const ViewerOptions& options, bool scene_mode, const T
         if (options.max_opacity > 0 && largest > 0) {
             for (OpacityPoint& p : edit.opacity) p.a *= options.max_opacity / largest;
         }
-    } else if (scene_mode) {
-        edit.colormap = options.colormap.empty() ? "viridis" : options.colormap;
+    } else {
+        edit.colormap = options.colormap;
         edit.opacity = ramp_opacity(lo, hi, options.max_opacity > 0 ? options.max_opacity : 0.3);
         edit.unit_distance = tf.unit_distance();
-    } else {
-        // A mesh: the quick look's choices (pipeline/quick_look.h), as `tetrender render` makes
-        // them: a ramp from a fifth of its top, so that low values stay visible, and a unit
-        // distance that brings a typical ray through the object to opacity 0.8.
-        edit.colormap = options.colormap.empty() ? "viridis" : options.colormap;
-        const double top = options.max_opacity > 0 ? options.max_opacity : 0.5;
-        edit.opacity = ramp_opacity(lo, hi, top, 0.2);
-        const TransferFunction shape =
-            TransferFunction::create({{lo, Vec3(1.0)}}, edit.opacity, 1.0).value();
-        edit.unit_distance = unit_distance_for_opacity(
-            values, [&](double s) { return shape.opacity(s); }, chord, 0.8);
-        if (!(edit.unit_distance > 0)) edit.unit_distance = bounds.diagonal() / 20.0;
     }
     if (options.unit_distance > 0) edit.unit_distance = options.unit_distance;
     if (!(edit.unit_distance > 0)) edit.unit_distance = 1;
+    return edit;
+}
+
+// `points` less those on the line through their neighbours (a ramp sampled densely).
+std::vector<OpacityPoint> without_collinear(const std::vector<OpacityPoint>& points) {
+    if (points.size() < 3) return points;
+    std::vector<OpacityPoint> kept{points.front()};
+    for (std::size_t i = 1; i + 1 < points.size(); ++i) {
+        const OpacityPoint &a = kept.back(), &b = points[i + 1], &p = points[i];
+        const double t = b.s > a.s ? (p.s - a.s) / (b.s - a.s) : 0.0;
+        if (std::abs(p.a - (a.a + t * (b.a - a.a))) > 1e-9) kept.push_back(p);
+    }
+    kept.push_back(points.back());
+    return kept;
+}
+
+// The panel's edit of a quick look's transfer function `tf` (pipeline/quick_scene.h): its
+// colour map by name (a preset file's colours as the scene's own), opacity points, unit
+// distance and colour range; in decades when `decades` (tf then spreads its points at 10^x,
+// project/transfer_function.h log_scaled, and the viewer shows log10 of the scalar).
+TransferEdit quick_edit(const TransferFunction& tf, const QuickSceneOptions& quick, bool decades) {
+    const auto axis = [&](double s) { return decades ? std::log10(s) : s; };
+    TransferEdit edit;
+    edit.colormap = quick.colormap_preset ? "" : quick.colormap;
+    for (const ColorPoint& p : tf.color_points()) edit.scene_colors.push_back({axis(p.s), p.rgb});
+    for (const OpacityPoint& p : tf.opacity_points()) edit.opacity.push_back({axis(p.s), p.a});
+    if (decades) edit.opacity = without_collinear(edit.opacity);
+    edit.unit_distance = tf.unit_distance();
+    edit.lo = edit.scene_colors.front().s;
+    edit.hi = edit.scene_colors.back().s;
     return edit;
 }
 
@@ -144,7 +155,7 @@ Status load_fused_volumes(ViewerScene& vs, const ViewerOptions& options) {
         if (!values.ok()) return name(with_where(values.error(), volume.mesh.string()));
         fv.scalar = std::move(values).value();
         fv.longest_edge = longest_edge(fv.mesh());
-        fv.edit = initial_edit(options, true, volume.transfer_function, lo, hi, fv.mesh().bounds());
+        fv.edit = initial_edit(options, volume.transfer_function, lo, hi);
         auto tf = make_transfer_function(fv.edit);
         if (!tf.ok()) return name(tf.error());
         volume.transfer_function = std::move(tf).value();
@@ -180,23 +191,26 @@ Result<TransferFunction> make_transfer_function(const TransferEdit& edit) {
 
 Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
     ViewerScene vs;
-    const bool scene_mode = is_scene_file(options.input);
-    if (scene_mode) {
-        if (options.log_scale) {
-            return make_error(ErrorCode::kInvalidArgument,
-                              "--log is for a mesh file; a scene's transfer function is its own",
-                              options.input);
-        }
-        TR_TRY(vs.scene, read_scene(options.input));
-    } else {
-        vs.log_scale = options.log_scale;
-        vs.scene.volumes.emplace_back();
-        vs.volume().mesh = std::filesystem::absolute(options.input);
+    std::vector<std::string>& notes = vs.notes;
+    const bool scene_mode = apps::is_scene_file(options.input);
+    if (scene_mode && options.quick.log_scale) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "--log is for a mesh file; a scene's transfer function is its own",
+                          options.input);
     }
     PipelineOptions pipeline_options;
     pipeline_options.progress = apps::terminal_progress();
     vs.pipeline = std::make_unique<Pipeline>(pipeline_options);
     Pipeline& pipeline = *vs.pipeline;
+    if (scene_mode) {
+        TR_TRY(vs.scene, read_scene(options.input));
+    } else {
+        // The quick look `tetrender render MESH` makes, at the window's size.
+        QuickSceneOptions quick = options.quick;
+        quick.width = options.width, quick.height = options.height;
+        TR_TRY(vs.scene, quick_scene_of_file(pipeline, options.input, quick, options.file, &notes));
+        vs.log_scale = quick.log_scale;
+    }
     const bool fused = vs.scene.volumes.size() > 1;
     if (fused) {
         if (options.flow_volume || vs.scene.flow_volume) {
@@ -212,7 +226,6 @@ Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
     for (const Field& f : loaded->tets.point_fields()) vs.arrays.push_back(f.name);
     for (const Field& f : loaded->tets.cell_fields()) vs.arrays.push_back(f.name);
     vs.arrays.push_back(kConstant);
-    const Bounds3 bounds = loaded->tets.bounds();
     if (options.flow_volume) vs.scene.flow_volume = options.flow_volume;
     if (!fused && !vector_arrays(loaded->tets).empty()) {
         TR_TRY(FlowDomain domain, pipeline.flow_domain(vs.volume()));
@@ -234,33 +247,13 @@ Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
         vs.scene.width = options.width;
         vs.scene.height = options.height;
     }
-    int component = -1;
-    if (scene_mode) {
-        vs.scalar_name = vs.volume().scalar;
-        component = vs.volume().component;
-    } else {
-        vs.scalar_name = options.scalar.empty() ? vs.arrays.front() : options.scalar;
-        CameraFit fit;
-        fit.from = kDefaultViewDirection;
-        fit.width = vs.scene.width, fit.height = vs.scene.height;
-        vs.scene.camera = fitting_camera(std::vector<const TetMesh*>{&loaded->tets}, fit);
-    }
+    vs.scalar_name = vs.volume().scalar;
     double lo = 0, hi = 1;
-    auto values = scalar_values(vs, vs.scalar_name, component, lo, hi);
+    auto values = scalar_values(vs, vs.scalar_name, vs.volume().component, lo, hi);
     if (!values.ok()) return with_where(values.error(), mesh_name);
     vs.scalar = std::move(values).value();
-    double chord = 0;
-    if (!scene_mode) {
-        // The quick look's range: the 1st to 99th percentile (the whole range when that is
-        // one value).
-        if (const auto robust = robust_range(vs.scalar, 1.0);
-            robust.ok() && (*robust)[1] > (*robust)[0]) {
-            lo = (*robust)[0], hi = (*robust)[1];
-        }
-        chord = mean_chord_length(loaded->tets);
-    }
-    vs.edit = initial_edit(options, scene_mode, vs.volume().transfer_function, lo, hi, bounds,
-                           vs.scalar, chord);
+    vs.edit = scene_mode ? initial_edit(options, vs.volume().transfer_function, lo, hi)
+                         : quick_edit(vs.volume().transfer_function, options.quick, vs.log_scale);
     TR_TRY(vs.volume().transfer_function, make_transfer_function(vs.edit));
     TR_TRY(vs.opaque, pipeline.opaque(vs.scene));
     return vs;

@@ -15,23 +15,29 @@
 #include <memory>
 #include <optional>
 #include <pipeline/pipeline.h>
+#include <pipeline/quick_file_scene.h>
+#include <pipeline/quick_scene.h>
 #include <string>
 #include <vector>
 
 namespace tr::viewer {
 
 struct ViewerOptions {
-    std::string input;   // scene .json or mesh file
-    std::string scalar;  // mesh mode: array to show (empty: the first point array, else the first
-                         // cell array, else a constant)
-    std::string colormap = "viridis";
-    double max_opacity = 0;    // largest opacity: of the ramp (0: 0.3), or a scene's points scaled
-    double unit_distance = 0;  // 0: the quick default (bounds diagonal / 20) or the scene's
-    // Mesh mode: a log colour scale (`--log`). The viewer shows log10 of the scalar (values
-    // <= 0 as the smallest positive one) under a transfer function in decades, so that the GL
-    // renderer's table stays even in decades; `tetrender render --log` keeps the field and
-    // spreads the transfer function instead, so a cell spanning decades differs a little.
-    bool log_scale = false;
+    std::string input;  // scene .json or mesh file
+    // Scene mode: recolour with this map (empty: the scene's colours), scale the opacity
+    // points to this largest opacity (0: as they are), this unit distance (0: the scene's).
+    std::string colormap;
+    double max_opacity = 0;
+    double unit_distance = 0;
+    // Mesh mode: the quick look's scene as `tetrender render MESH` makes it (its scalar,
+    // colour map, opacity and unit distance as above; width, height from here), and which data
+    // a name that is both means. With quick.log_scale (`--log`) the viewer shows log10 of the
+    // scalar (values <= 0 as the smallest positive one) under the same transfer function in
+    // decades, so that the GL renderer's table stays even in decades; `tetrender render --log`
+    // keeps the field and spreads the transfer function instead, so a cell spanning decades
+    // differs a little.
+    QuickSceneOptions quick;
+    QuickFileOptions file;
     int width = 960, height = 600;  // mesh mode (a scene file gives its own unless --size)
     bool size_given = false;
     SortMethod sort = SortMethod::kAuto;
@@ -73,7 +79,7 @@ struct ViewerScene {
     std::vector<std::string> arrays;  // point and cell arrays that can be the scalar
     std::string scalar_name;          // in use ("(constant)" when the mesh has none)
     std::vector<float> scalar;        // one per sort.mesh() point (log10 of it with log_scale)
-    bool log_scale = false;           // ViewerOptions::log_scale: `scalar` and `edit` in decades
+    bool log_scale = false;           // quick.log_scale: `scalar` and `edit` in decades
     TransferEdit edit;
     double longest_edge = 1;
     OpaqueSet opaque;
@@ -89,6 +95,9 @@ struct ViewerScene {
     // Empty for one volume.
     std::vector<FusedVolume> fused;
     FusedMode fused_mode = FusedMode::kProgressive;  // how they are drawn at start
+    // What the user should know of the quick look's choices (the array shown when none was
+    // named, values <= 0 under --log, ...): the caller prints them.
+    std::vector<std::string> notes;
 
     SceneVolume& volume() { return scene.volumes[0]; }
     const SceneVolume& volume() const { return scene.volumes[0]; }

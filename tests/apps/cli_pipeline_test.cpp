@@ -358,8 +358,15 @@ TEST(CliQuickLook, LogScaleAndTheSceneItWrites) {
     // With the legend (on by default in quick mode) a log axis, so another picture.
     run = run_cli("render " + mesh + " --scalar t --size 320x240 --log -o " + at("legend.png"));
     ASSERT_EQ(run.exit_code, 0) << run.err;
+    // The quick look's options are refused with a scene file (it says them itself), except
+    // the camera and a colour-map file.
     expect_one_line_error(run_cli("render " + at("log.json") + " --log -o " + at("x.png")), 2,
                           "--log is for quick mode");
+    expect_one_line_error(
+        run_cli("render " + at("log.json") + " --size 10x10 --range 0,1 -o " + at("x.png")), 2,
+        "--range is for quick mode");
+    expect_one_line_error(run_cli("render " + at("log.json") + " --scalar t -o " + at("x.png")), 2,
+                          "--scalar is for quick mode");
     expect_one_line_error(run_cli(quick + "--log --range 0,1 -o " + at("x.png")), 1,
                           "--log needs a positive range");
     EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));

@@ -64,8 +64,8 @@ TEST(ViewerLog, ShowsTheDecadesOfTheMeshScalar) {
     const testing::TestScene t = testing::make_test_scene(6);
     viewer::ViewerOptions options;
     options.input = t.mesh;
-    options.scalar = "blob";
-    options.log_scale = true;
+    options.quick.scalar = "blob";
+    options.quick.log_scale = true;
     auto loaded = viewer::load_viewer_scene(options);
     ASSERT_TRUE(loaded.ok()) << loaded.error().to_string();
     const viewer::ViewerScene& vs = *loaded;

@@ -257,6 +257,48 @@ TEST(Viewer, NoOpenGl33CoreSaysSo) {
     std::filesystem::remove_all(t.dir);
 }
 
+// A mesh opened in the viewer is the quick look `tetrender render` makes, with the same
+// options: the viewer's GL picture against the CLI's CPU picture (pre-integrated both), with the
+// range, log scale, opacity curve, camera turns and background given.
+TEST(Viewer, AMeshIsTheQuickLookOfRenderWithItsOptions) {
+    if (!require_xvfb()) GTEST_SKIP() << "no xvfb-run";
+    const TestScene t = make_test_scene();
+    const std::string quick =
+        " --scalar blob --range 0.05,0.9 --opacity-curve 0:0.05,0.5:0.4,1:0.2 --azimuth 30 "
+        "--elevation 20 --zoom 1.2 --background 0.1,0.1,0.2 --size 240x180 ";
+    struct Case {
+        std::string name, options;
+        ImageBounds bounds;
+    };
+    const std::vector<Case> cases = {
+        {"plain", " --size 240x180 ", {77.2, 0.002}},  // measured 79.22 dB, 0.00152
+        {"options", quick, {74.0, 0.0035}},            // measured 76.04 dB, 0.00263 (Mesa llvmpipe)
+        // log10 of the field interpolated in each cell (the viewer) against the field
+        // (render): measured 43.86 dB, 0.0490.
+        {"log", quick + "--log ", {41.8, 0.062}},
+    };
+    for (const Case& c : cases) {
+        const std::string gl_path = t.dir + "/" + c.name + "_gl.pfm";
+        const std::string cpu_path = t.dir + "/" + c.name + "_cpu.pfm";
+        auto run = run_viewer(shell_quote(t.mesh) + c.options +
+                              " --integrator preintegrated --screenshot " + shell_quote(gl_path));
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        run = testing::run_cli("render " + shell_quote(t.mesh) + c.options + " --legend off -o " +
+                               shell_quote(cpu_path));
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        const Image gl = read_pfm(gl_path), cpu = read_pfm(cpu_path);
+        ASSERT_GT(lit_fraction(cpu, 0.1f), 0.2) << c.name;
+        const Vec3f background = c.name == "plain" ? Vec3f(0.0f) : Vec3f(0.1f, 0.1f, 0.2f);
+        EXPECT_TRUE(images_match(gl, cpu, background, c.bounds, "viewer_quick_" + c.name));
+    }
+    // The quick look's options are for a mesh file: a scene says it itself.
+    const auto refused = run_viewer(
+        shell_quote(t.scene) + " --range 0,1 --screenshot " + shell_quote(t.dir + "/x.pfm"), false);
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_NE(refused.err.find("--range is for a mesh file"), std::string::npos) << refused.err;
+    std::filesystem::remove_all(t.dir);
+}
+
 TEST(Viewer, BadFilesAndCommandLines) {
     const std::string dir = testing::make_temp_dir();
     const std::string out = dir + "/x.png";
