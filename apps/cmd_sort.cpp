@@ -197,6 +197,8 @@ std::function<int()> add_sort_check_command(CLI::App& app) {
                     "auto, mpvo, mpvonc, exact, centroid, or all (default all)");
     cmd->add_option("--seed", args->seed, "Seed of the random views (default 1)");
     cmd->add_flag("--json", args->json, "One JSON line per sorter and view");
+    cmd->add_option("--time-step", args->load.time_step, "Time step to read (default 0)")
+        ->check(CLI::NonNegativeNumber);
     return [args] { return run_sort_check(*args); };
 }
 

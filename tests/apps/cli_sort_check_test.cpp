@@ -132,6 +132,16 @@ TEST(CliSortCheck, ExitsWithThreeWhenAnExactSorterIsWrong) {
     EXPECT_EQ(fine.err, "");
     EXPECT_NE(fine.out.find("total 0 violations (claims exact), convexified"), std::string::npos)
         << fine.out;
+    // --time-step, as every command that reads a mesh: step 0 of a single file reads, another
+    // is a one-line error.
+    const auto step0 =
+        run_cli("sort-check " + shell_quote(straight) + " --sort mpvo --time-step 0");
+    EXPECT_EQ(step0.exit_code, 0) << step0.err;
+    const auto step3 =
+        run_cli("sort-check " + shell_quote(straight) + " --sort mpvo --time-step 3");
+    EXPECT_EQ(step3.exit_code, 1);
+    EXPECT_NE(step3.err.find("time step 3 out of range"), std::string::npos) << step3.err;
+    EXPECT_EQ(step3.err.find('\n'), step3.err.size() - 1) << step3.err;
     std::filesystem::remove_all(dir);
 }
 
