@@ -124,14 +124,13 @@ class LegacyBody {
             keyword_ = kw.empty() ? word : kw;
             if (kw == "POINTS") {
                 const std::uint64_t n = count("the point count");
-                values(times(3, n), number_type(), "POINTS");
+                values(times(3, n), number_type(), "POINTS", 3);
             } else if (kw == "X_COORDINATES" || kw == "Y_COORDINATES" || kw == "Z_COORDINATES") {
                 const std::uint64_t n = count("the coordinate count");
                 implicit_points_ *= static_cast<double>(n);
                 check_implicit_points();
                 values(n, number_type(), kw);
             } else if (kw == "DIMENSIONS") {
-                dimensions_seen_ = true;
                 double points = 1.0;
                 for (int a = 0; a < 3; ++a) points *= static_cast<double>(count("a dimension"));
                 if (header_.dataset == "STRUCTURED_POINTS") {
@@ -154,11 +153,11 @@ class LegacyBody {
             } else if (kw == "VECTORS" || kw == "NORMALS" || kw == "TENSORS" || kw == "TENSORS6") {
                 const std::string name = name_word();
                 const std::uint64_t nc = kw == "TENSORS" ? 9 : kw == "TENSORS6" ? 6 : 3;
-                if (!values(times(nc, tuples_), type(), kw + " " + name)) return;
+                if (!values(times(nc, tuples_), type(), kw + " " + name, nc)) return;
             } else if (kw == "TEXTURE_COORDINATES") {
                 const std::string name = name_word();
                 const std::uint64_t dim = count("the dimension");
-                if (!values(times(dim, tuples_), type(), kw + " " + name)) return;
+                if (!values(times(dim, tuples_), type(), kw + " " + name, dim)) return;
             } else if (kw == "GLOBAL_IDS" || kw == "PEDIGREE_IDS") {
                 const std::string name = name_word();
                 if (!values(tuples_, type(), kw + " " + name)) return;
@@ -166,17 +165,17 @@ class LegacyBody {
                 const std::string name = name_word();
                 const std::uint64_t nc = count("the component count");
                 values(times(nc, tuples_), header_.binary ? "unsigned_char" : "float",
-                       kw + " " + name);
+                       kw + " " + name, nc);
             } else if (kw == "LOOKUP_TABLE") {
                 const std::string name = name_word();
                 const std::uint64_t n = count("the table size");
-                values(times(4, n), header_.binary ? "unsigned_char" : "float", kw + " " + name);
+                // ReadLutData reads the values itself, not through ReadArray.
+                values(times(4, n), header_.binary ? "unsigned_char" : "float", kw + " " + name, 4,
+                       false);
             } else if (kw == "FIELD") {
-                if (!field()) return;
+                field();
             } else {
-                // METADATA, INFORMATION, anything else: VTK judges the rest, but for its grids'
-                // FIELDs before DIMENSIONS.
-                scan_for_fields();
+                // METADATA out of place, INFORMATION, anything else: VTK judges the rest.
                 return;
             }
         }
@@ -213,28 +212,6 @@ class LegacyBody {
         return w;
     }
 
-    // VTK's structured points, structured and rectilinear grid readers first scan the file for
-    // DIMENSIONS word by word (ReadMetaDataSimple), reading a FIELD at every word that starts
-    // with "field" and dereferencing what it gives, null when that FIELD is bad (a segfault found
-    // by fuzz_legacy_vtk: "fieldOZIGIN 1z2OKU]_TABL 3" in garbage after the walk had stopped).
-    // Do the same scan: each such FIELD must be good.
-    void scan_for_fields() {
-        if (dimensions_seen_ ||
-            (header_.dataset != "STRUCTURED_POINTS" && header_.dataset != "STRUCTURED_GRID" &&
-             header_.dataset != "RECTILINEAR_GRID")) {
-            return;
-        }
-        std::string word;
-        while (in_.word(word)) {
-            const std::string w = lower(word);
-            if (starts_with(w, "dimensions")) return;
-            if (starts_with(w, "field")) {
-                keyword_ = "FIELD";
-                if (!field()) return;
-            }
-        }
-    }
-
     // A data type that must be a number (coordinates): VTK's ReadArray reads a string type
     // there too, sized by the count (fuzz_legacy_vtk: "POINTS 9utf8_string float" asked for
     // 141 TB), before the points reject it.
@@ -257,13 +234,24 @@ class LegacyBody {
         }
     }
 
-    // vtkDataReader::ReadArray: `n` values of `type`. False for types that are not numbers
-    // (strings, variants, unknown): the walk stops there and VTK judges the rest.
-    bool values(std::uint64_t n, const std::string& type_name, const std::string& what) {
+    // vtkDataReader::ReadArray: `n` values of `type` (`components` to a tuple), then what
+    // ReadArray reads after them (array_tail) unless `read_array` is false (VTK reads those values
+    // itself). False for types that are not numbers (strings, variants, unknown): the walk stops
+    // there and VTK judges the rest.
+    bool values(std::uint64_t n, const std::string& type_name, const std::string& what,
+                std::uint64_t components = 1, bool read_array = true) {
         const ValueType vt = value_type(type_name);
         if (vt.kind == ValueType::kOther) return false;
+        number_values(n, vt, type_name, what);
+        if (read_array) array_tail(what, components);
+        return true;
+    }
+
+    void number_values(std::uint64_t n, const ValueType& vt, const std::string& type_name,
+                       const std::string& what) {
         const std::uint64_t left = in_.left();
         if (header_.binary) {
+            if (n == 0) return;  // no getline either (svtkReadBinaryData returns first)
             in_.end_line();
             const std::uint64_t after = in_.left();
             const std::uint64_t bytes =
@@ -275,7 +263,7 @@ class LegacyBody {
                      at());
             }
             in_.skip_bytes(bytes);
-            return true;
+            return;
         }
         // Every ASCII value takes at least 2 bytes but the last.
         if (n > left / 2 + 1) {
@@ -303,7 +291,49 @@ class LegacyBody {
                      " (the section has fewer values than it declares, or garbage)",
                  at());
         }
-        return true;
+    }
+
+    // The end of vtkDataReader::ReadArray: it pops lines of blanks (' ' and '\r' up to a '\n'),
+    // peeking 256 bytes at a time, then reads an array METADATA block when the next 8 bytes are
+    // "metadata" (any case). VTK 9.1 peeks the same 256 bytes again forever when all of them are
+    // blanks (a hang found by hand: 300 spaces after POINTS), so that is an error here.
+    void array_tail(const std::string& what, std::uint64_t components) {
+        for (;;) {
+            const std::uint64_t n = std::min<std::uint64_t>(in_.left(), 256);
+            std::uint64_t i = 0;
+            while (i < n && (in_.byte(i) == ' ' || in_.byte(i) == '\r')) ++i;
+            if (i == 256) {
+                fail(ErrorCode::kParse,
+                     what + ": 256 or more blanks in a row after its values (VTK 9.1's reader " +
+                         "loops forever on them)",
+                     at());
+            }
+            if (i == n || in_.byte(i) != '\n') break;
+            in_.skip_bytes(i + 1);
+        }
+        if (in_.left() < 8) return;
+        std::string peek;
+        for (std::uint64_t i = 0; i < 8; ++i) peek += static_cast<char>(in_.byte(i));
+        if (lower(peek) != "metadata") return;
+        // The block: lines up to an empty one; COMPONENT_NAMES takes the next `components`
+        // lines whatever they hold. (An INFORMATION block is read line by line too: VTK parses
+        // its keys, but a file VTK wrote has no empty line inside one.)
+        std::string line;
+        in_.line(line);
+        while (in_.line(line)) {
+            if (line.empty()) break;
+            if (starts_with(lower(line), "component_names")) {
+                for (std::uint64_t c = 0; c < components; ++c) {
+                    // VTK goes on reading (and failing) for every name it lacks.
+                    if (!in_.line(line)) {
+                        fail(ErrorCode::kParse,
+                             what + ": METADATA COMPONENT_NAMES has " + std::to_string(c) + " of " +
+                                 std::to_string(components) + " names",
+                             at());
+                    }
+                }
+            }
+        }
     }
 
     // CELL_TYPES: `n` ints. Polyhedra (VTK type 42) are refused: VTK decodes their face stream
@@ -489,19 +519,24 @@ class LegacyBody {
             }
             previous = v;
         }
+        array_tail(what, 1);  // ReadCells reads them with ReadArray
     }
 
     // vtkDataReader::ReadFieldData: name, array count, then per array its name (or
-    // NULL_ARRAY), components, tuples, type and values. False when the walk must stop (an
-    // array of strings, per-array METADATA): VTK judges the rest.
-    bool field() {
+    // NULL_ARRAY), components, tuples, type and values, each read by ReadArray (values, then
+    // array_tail). ReadFieldData gives null for a bad header or an array ReadArray cannot read
+    // (a type it does not know, a bit array short of values), and VTK's dataset readers
+    // dereference that null (segfaults found by fuzz_legacy_vtk); a count that is not a number
+    // leaves VTK reading on with a failed stream and uninitialized values. All are errors here.
+    void field() {
         name_word();
-        const std::uint64_t arrays = count("the array count");
-        for (std::uint64_t i = 0; i < arrays; ++i) {
+        // Read(int*): a negative count reads no array.
+        std::int64_t arrays = 0;
+        if (!in_.integer(arrays, 2147483648u)) bad("the array count");
+        for (std::int64_t i = 0; i < arrays; ++i) {
             std::string name;
             if (!in_.word(name)) bad("a FIELD array");
             if (name == "NULL_ARRAY") continue;
-            if (keyword_of(name) == "METADATA") return false;
             const std::uint64_t nc = count("the component count");
             const std::uint64_t nt = count("the tuple count");
             if (nc != 0 && nt > in_.left() / nc + 1) {
@@ -512,27 +547,134 @@ class LegacyBody {
                      at());
             }
             const std::string type_name = type();
-            // VTK's ReadArray gives no array for a type it does not know, and its dataset
-            // readers then dereference the null field data (a segfault found by
-            // fuzz_legacy_vtk): refuse it here.
             const std::string t = lower(type_name);
-            if (value_type(t).kind == ValueType::kOther && !starts_with(t, "string") &&
-                !starts_with(t, "utf8_string") && !starts_with(t, "variant")) {
-                fail(ErrorCode::kParse,
-                     "FIELD array " + name + ": unknown data type " + quote_word(type_name), at());
+            const std::string what = "FIELD array " + name;
+            if (starts_with(t, "string") || starts_with(t, "utf8_string")) {
+                string_values(times(nc, nt), what);
+            } else if (starts_with(t, "variant")) {
+                variant_values(times(nc, nt), what);
+            } else if (value_type(t).kind == ValueType::kOther) {
+                fail(ErrorCode::kParse, what + ": unknown data type " + quote_word(type_name),
+                     at());
+            } else {
+                number_values(times(nc, nt), value_type(t), type_name, what);
             }
-            if (!values(times(nc, nt), type_name, "FIELD array " + name)) return false;
+            array_tail(what, nc);
         }
-        return true;
     }
 
+    // ReadArray's strings: ASCII, the rest of the line and then one line per value; BINARY, the
+    // rest of the line (getline) and then per value a big-endian length whose first byte's top
+    // two bits give its size (1, 2, 4 bytes; 0 means 8, read with only its first 4 bytes
+    // swapped), then that many bytes. VTK loops over every value even after the end of the file
+    // (and allocates each length), so every value must be there.
+    void string_values(std::uint64_t n, const std::string& what) {
+        const auto truncated = [&](std::uint64_t i) {
+            fail(ErrorCode::kParse,
+                 "truncated file: " + what + " has " + std::to_string(i) + " of " +
+                     std::to_string(n) + " strings",
+                 at());
+        };
+        if (!header_.binary) {
+            std::string line;
+            in_.line(line);
+            for (std::uint64_t i = 0; i < n; ++i) {
+                if (!in_.line(line)) truncated(i);
+            }
+            return;
+        }
+        in_.end_line();
+        for (std::uint64_t i = 0; i < n; ++i) {
+            if (in_.left() == 0) truncated(i);
+            const unsigned kind = in_.byte(0) >> 6;
+            const std::uint64_t size = kind == 3 ? 1 : kind == 2 ? 2 : kind == 1 ? 4 : 8;
+            if (size > in_.left()) truncated(i);
+            std::uint64_t length = 0;
+            if (size < 8) {
+                for (std::uint64_t b = 0; b < size; ++b) length = (length << 8) | in_.byte(b);
+                length &= (std::uint64_t(1) << (8 * size - 2)) - 1;
+            } else {
+                // Swap4BE on the 8 bytes read as a little-endian uint64: bytes 0..3 reversed.
+                for (std::uint64_t b = 0; b < 4; ++b) length = (length << 8) | in_.byte(b);
+                for (std::uint64_t b = 0; b < 4; ++b) {
+                    length |= std::uint64_t(in_.byte(4 + b)) << (32 + 8 * b);
+                }
+            }
+            in_.skip_bytes(size);
+            if (length > in_.left()) truncated(i);
+            in_.skip_bytes(length);
+        }
+    }
+
+    // ReadArray's variants: per value an int (the type) and a word (operator>> into a string).
+    void variant_values(std::uint64_t n, const std::string& what) {
+        if (n > in_.left() / 4 + 1) {
+            fail(ErrorCode::kParse,
+                 "truncated file: " + what + " declares " + std::to_string(n) + " values, " +
+                     std::to_string(in_.left()) + " bytes are left",
+                 at());
+        }
+        for (std::uint64_t i = 0; i < n; ++i) {
+            std::int64_t t = 0;
+            std::string word;
+            if (!in_.integer(t, 2147483648u) || !in_.long_word(word)) {
+                fail(ErrorCode::kParse,
+                     what + ": value " + std::to_string(i + 1) + " of " + std::to_string(n) +
+                         " is not a type number and a word",
+                     at());
+            }
+        }
+    }
+
+  public:
+    // vtkStructuredGridReader::ReadMetaDataSimple (VTK 9.1), run before the reader proper:
+    // it reads the whole file word by word (point values, array names, binary bytes alike), reads
+    // a FIELD at every word that starts with "field" (any case) and dereferences what that
+    // gives, and reads the first DIMENSIONS (or EXTENT) as three (six) ints, stopping when they
+    // fail. A valid grid with an array named "fieldstrength" crashes it (SIGSEGV): every FIELD
+    // this scan meets must be good. (The structured points and rectilinear grid readers'
+    // metadata scans read no FIELD.) An array METADATA block is read as array_tail reads it; in
+    // the one VTK's own scan reads by lines, the words are scanned like the rest (more words
+    // than VTK looks at: an error here at worst, never a missed crash).
+    void scan_structured_grid() {
+        bool dimensions = false;
+        std::string word;
+        while (in_.word(word)) {
+            const std::string w = lower(word);
+            if (starts_with(w, "field")) {
+                const std::string line =
+                    header_.binary ? "" : " (line " + std::to_string(in_.line_of_last_word()) + ")";
+                keyword_ = "FIELD";
+                try {
+                    field();
+                } catch (const IoError& e) {
+                    fail(e.error().code,
+                         "VTK 9.1's structured grid reader reads a FIELD at every word that starts "
+                         "with 'field' (and crashes on a bad one): " +
+                             quote_word(word) + line + " gives " + e.error().message +
+                             (w != "field" && !header_.binary ? " (rename what starts with 'field')"
+                                                              : ""),
+                         e.error().where);
+                }
+            }
+            const int ints = starts_with(w, "dimensions") ? 3 : starts_with(w, "extent") ? 6 : 0;
+            if (ints != 0 && !dimensions) {
+                for (int i = 0; i < ints; ++i) {
+                    std::int64_t v = 0;
+                    if (!in_.integer(v, 2147483648u)) return;  // VTK stops here
+                }
+                dimensions = true;
+            }
+        }
+    }
+
+  private:
     LegacyStream& in_;
     const LegacyHeader& header_;
     std::string where_;
     std::string keyword_;           // of the section being read, for messages
     std::uint64_t tuples_ = 0;      // of the current POINT_DATA / CELL_DATA section
     double implicit_points_ = 1.0;  // product of the coordinate counts so far
-    bool dimensions_seen_ = false;
 };
 
 }  // namespace
@@ -548,6 +690,12 @@ void check_vtk_legacy(const fs::path& path, const std::string& want_dataset) {
     }
     LegacyBody body(in, header, where);
     body.walk();
+    if (header.dataset == "STRUCTURED_GRID") {
+        LegacyStream again(data);
+        read_header(again, data, where);
+        LegacyBody scan(again, header, where);
+        scan.scan_structured_grid();
+    }
 }
 
 }  // namespace tr::io_detail

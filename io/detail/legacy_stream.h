@@ -126,6 +126,18 @@ class LegacyStream {
         return true;
     }
 
+    // operator>> into a std::string (no width set): the next whitespace-separated word, however
+    // long; false at the end.
+    bool long_word(std::string& out) {
+        skip_space();
+        word_start_ = pos_;
+        if (pos_ >= data_.size()) return false;
+        const std::size_t start = pos_;
+        while (pos_ < data_.size() && !is_space(data_[pos_])) ++pos_;
+        out = data_.substr(start, pos_ - start);
+        return true;
+    }
+
     // operator>> into an integer: blanks, a sign, digits, up to the first other character.
     // False (nothing consumed) when there is no digit or the magnitude exceeds `max_magnitude`
     // (for an unsigned type, libstdc++ takes a '-' and negates, hence the magnitude).

@@ -157,11 +157,14 @@ TEST(IoFuzzFindings, CoordinatesOfAStringTypeAreAnError) {
 }
 
 // fuzz_legacy_vtk, third run: a STRUCTURED_GRID whose walk stopped at a garbage word, with
-// "fieldOZIGIN 1z2OKU]_TABL 3 / SPE defACauIN2 ..." further on: VTK's grid readers scan for
-// DIMENSIONS word by word, read a FIELD at every word starting with "field" and dereference
-// the null a bad one gives (SIGSEGV in vtkStructuredGridReader::ReadMetaDataSimple, exit 139 in
-// a normal build). Measured: "sg.vtk:9: error: FIELD: expected the component count, found
-// 'defACauIN2'".
+// "fieldOZIGIN 1z2OKU]_TABL 3 / SPE defACauIN2 ..." further on: VTK's structured grid reader
+// scans the file word by word, reads a FIELD at every word starting with "field" and
+// dereferences the null a bad one gives (SIGSEGV in vtkStructuredGridReader::ReadMetaDataSimple,
+// exit 139 in a normal build). Measured: "sg.vtk:9: error: VTK 9.1's structured grid reader
+// reads a FIELD at every word that starts with 'field' (and crashes on a bad one):
+// 'fieldOZIGIN' (line 8) gives FIELD: expected the component count, found 'defACauIN2' (rename
+// what starts with 'field')". The structured points and rectilinear grid readers' scans read no
+// FIELD: their reader stops at the garbage word ("Unrecognized keyword: garbage").
 TEST(IoFuzzFindings, BadFieldBeforeGridDimensionsIsAnError) {
     TempDir dir;
     for (const std::string dataset : {"STRUCTURED_GRID", "STRUCTURED_POINTS", "RECTILINEAR_GRID"}) {
@@ -172,7 +175,160 @@ TEST(IoFuzzFindings, BadFieldBeforeGridDimensionsIsAnError) {
                              "GARBAGE 1\nfieldOZIGIN 1z2OKU]_TABL 3\nSPE defACauIN2 2lt\n"
                              "DIMENSIONS 2 2 2\n");
         const std::string message = expect_error(read_mesh(path), path);
-        EXPECT_NE(message.find("FIELD: expected the component count, found 'defACauIN2'"),
+        if (dataset == "STRUCTURED_GRID") {
+            EXPECT_NE(message.find("'fieldOZIGIN' (line 8) gives FIELD: expected the component "
+                                   "count, found 'defACauIN2'"),
+                      std::string::npos)
+                << message;
+        }
+    }
+}
+
+// A 2 x 2 x 2 structured grid (ASCII) followed by `tail`.
+std::string structured_grid(const std::string& tail) {
+    return "# vtk DataFile Version 4.2\nfuzz\nASCII\nDATASET STRUCTURED_GRID\nDIMENSIONS 2 2 2\n"
+           "POINTS 8 float\n0 0 0 1 0 0 0 1 0 1 1 0 0 0 1 1 0 1 0 1 1 1 1 1\n" +
+           tail;
+}
+
+// The same grid as VTK 9.1's vtkStructuredGridWriter writes it (ASCII or BINARY): a dataset FIELD
+// with a string array whose values start with "field", a FIELD in the point data, and an array
+// METADATA block (component names).
+std::string structured_grid_as_vtk_writes_it(bool binary) {
+    const auto floats = [&](std::initializer_list<float> values) {
+        std::string out;
+        for (const float v : values) {
+            if (!binary) {
+                char text[32];
+                std::snprintf(text, sizeof text, "%g ", static_cast<double>(v));
+                out += text;
+                continue;
+            }
+            std::uint32_t bits = 0;
+            std::memcpy(&bits, &v, 4);
+            for (int b = 3; b >= 0; --b) out += static_cast<char>((bits >> (8 * b)) & 0xff);
+        }
+        return out + "\n";
+    };
+    const std::string strings = binary ? std::string(
+                                             "\xc9"
+                                             "field one"
+                                             "\xc8"
+                                             "fieldtwo\n")
+                                       : "field%20one\nfieldtwo\n\n";
+    return "# vtk DataFile Version 5.1\nvtk output\n" + std::string(binary ? "BINARY" : "ASCII") +
+           "\nDATASET STRUCTURED_GRID\nFIELD FieldData 2\nlabels 1 2 string\n" + strings +
+           "time 1 1 float\n" + floats({1.5f}) + "DIMENSIONS 2 2 2\nPOINTS 8 float\n" +
+           floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1}) +
+           "POINT_DATA 8\nSCALARS temperature float\nLOOKUP_TABLE default\n" +
+           floats({0, 1, 2, 3, 4, 5, 6, 7}) + "FIELD FieldData 1\nfieldvel 3 8 float\n" +
+           floats({0, 0, 1, 0, 1, 1, 0, 2, 1, 0, 3, 1, 0, 4, 1, 0, 5, 1, 0, 6, 1, 0, 7, 1}) +
+           "METADATA\nCOMPONENT_NAMES\nvx\nvy\nvz\n\n";
+}
+
+// Found by hand after the fifth fuzz_legacy_vtk run (its file was lost): VTK 9.1's
+// vtkStructuredGridReader::ReadMetaDataSimple does not stop at DIMENSIONS: it reads the whole
+// file word by word (values, names, binary bytes alike) and reads a FIELD at every word that
+// starts with "field", so a bad one anywhere -- after DIMENSIONS, after POINTS, in the point
+// data, an array named "fieldstrength", bytes of a binary coordinate that read " field" --
+// crashed it: each of the first four files below and the binary one segfaults a program that
+// reads it with vtkDataSetReader as tetrender does (measured); `tetrender info` exited 139 on the
+// first two before this fix. The pre-check now makes the same scan: each is a one-line error.
+// (strings_short is read by VTK with empty strings for the missing ones.)
+TEST(IoFuzzFindings, StructuredGridFieldAnywhereIsChecked) {
+    TempDir dir;
+    const struct {
+        std::string name;
+        std::string tail;
+        std::string message_part;
+    } cases[] = {
+        {"named.vtk",
+         "POINT_DATA 8\nSCALARS fieldstrength float 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7\n",
+         "'fieldstrength' (line 9) gives FIELD: expected the component count, found 'default' "
+         "(rename what starts with 'field')"},
+        {"after_points.vtk", "GARBAGE\nfieldX a 1 b c d e\n",
+         "'fieldX' (line 9) gives FIELD: expected the component count, found 'c'"},
+        {"in_point_data.vtk",
+         "POINT_DATA 8\nSCALARS t float 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7\n"
+         "fieldQ q 1\nb 1 1 nonsense 0\n",
+         "FIELD array b: unknown data type 'nonsense'"},
+        // The walk used to stop at a string array; VTK reads on to the next one.
+        {"after_strings.vtk", "FIELD fd 2\ns 1 2 string\nfield one\nfieldtwo\nb 1 1 nonsense\n0\n",
+         "FIELD array b: unknown data type 'nonsense'"},
+        {"strings_short.vtk", "FIELD fd 1\ns 1 5 string\none\ntwo\n",
+         "truncated file: FIELD array s has 2 of 5 strings"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        const auto path = dir / c.name;
+        write_file(path, structured_grid(c.tail));
+        const std::string message = expect_error(read_mesh(path), path);
+        EXPECT_NE(message.find(c.message_part), std::string::npos) << message;
+    }
+    // Binary coordinates whose bytes read " field!!" (1.95e-19, 1.1e27 as big-endian floats).
+    std::string binary =
+        "# vtk DataFile Version 4.2\nfuzz\nBINARY\nDATASET STRUCTURED_GRID\nDIMENSIONS 2 2 2\n"
+        "POINTS 8 float\n";
+    binary += std::string(36, '\0') + " field!!" + std::string(52, '\0') + "\n";
+    write_file(dir / "binary.vtk", binary);
+    const std::string message = expect_error(read_mesh(dir / "binary.vtk"), dir / "binary.vtk");
+    EXPECT_NE(message.find("'field!!"), std::string::npos) << message;
+
+    // What VTK's scan reads as it should: a grid as VTK writes it (a string array holding
+    // "field one", a point-data FIELD, component names), ASCII and BINARY; a vector named
+    // "fieldv" whose first value is 0 (VTK reads a FIELD 'float' of 0 arrays there); the
+    // other two grid kinds with an array named "fieldstrength".
+    for (const bool binary_file : {false, true}) {
+        SCOPED_TRACE(binary_file);
+        const auto path = dir / "as_written.vtk";
+        write_file(path, structured_grid_as_vtk_writes_it(binary_file));
+        auto ok = read_mesh(path);
+        ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+        EXPECT_EQ(ok.value().points.size(), 8u);
+        EXPECT_EQ(ok.value().num_cells(), 1u);
+    }
+    const std::string readable[] = {
+        structured_grid("POINT_DATA 8\nVECTORS fieldv float\n0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 "
+                        "0 0 1 0 0 1\n"),
+        "# vtk DataFile Version 4.2\nt\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n"
+        "ORIGIN 0 0 0\nSPACING 1 1 1\nPOINT_DATA 8\nSCALARS fieldstrength float 1\n"
+        "LOOKUP_TABLE default\n0 1 2 3 4 5 6 7\n",
+        "# vtk DataFile Version 4.2\nt\nASCII\nDATASET RECTILINEAR_GRID\nDIMENSIONS 2 2 2\n"
+        "X_COORDINATES 2 float\n0 1\nY_COORDINATES 2 float\n0 1\nZ_COORDINATES 2 float\n0 1\n"
+        "POINT_DATA 8\nSCALARS fieldstrength float 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7\n",
+    };
+    for (const std::string& text : readable) {
+        const auto path = dir / "readable.vtk";
+        write_file(path, text);
+        auto ok = read_mesh(path);
+        ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+        EXPECT_EQ(ok.value().points.size(), 8u);
+    }
+}
+
+// Found by hand while reading VTK 9.1's ReadArray: after an array's values it pops blank lines,
+// peeking 256 bytes at a time, and peeks the same bytes again forever when all 256 are spaces
+// (or '\r'): `tetrender info` of a tet with 300 spaces after its POINTS ran until killed. Now
+// "POINTS: 256 or more blanks in a row after its values (VTK 9.1's reader loops forever on
+// them)". 255 spaces read.
+TEST(IoFuzzFindings, BlanksAfterAnArrayAreAnError) {
+    TempDir dir;
+    for (const int blanks : {255, 300}) {
+        SCOPED_TRACE(blanks);
+        const auto path = dir / "tet.vtk";
+        write_file(path,
+                   "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+                   "POINTS 4 float\n0 0 0 1 0 0 0 1 0 0 0 1" +
+                       std::string(static_cast<std::size_t>(blanks), ' ') +
+                       "\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n");
+        auto result = read_mesh(path);
+        if (blanks == 255) {
+            ASSERT_TRUE(result.ok()) << result.error().to_string();
+            EXPECT_EQ(result.value().num_cells(), 1u);
+            continue;
+        }
+        const std::string message = expect_error(result, path);
+        EXPECT_NE(message.find("POINTS: 256 or more blanks in a row after its values"),
                   std::string::npos)
             << message;
     }
