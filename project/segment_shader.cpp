@@ -632,9 +632,10 @@ SegmentShader::SegmentShader(const TransferFunction& tf, Integrator integrator, 
         // u in [0, max_length], v in [0, kappa_max]: texel (i, j) holds 1 - exp(-u_i v_j).
         exp_table_.resize(kExpSize * kExpSize);
         for (int j = 0; j < kExpSize; ++j) {
-            const double v = kappa_max_ * j / (kExpSize - 1);
+            // Fractions first: kappa_max * j overflows near the largest double (then inf * 0).
+            const double v = kappa_max_ * (static_cast<double>(j) / (kExpSize - 1));
             for (int i = 0; i < kExpSize; ++i) {
-                const double u = max_length_ * i / (kExpSize - 1);
+                const double u = max_length_ * (static_cast<double>(i) / (kExpSize - 1));
                 exp_table_[j * kExpSize + i] = static_cast<float>(1.0 - std::exp(-u * v));
             }
         }
@@ -757,9 +758,11 @@ ShadedSegment SegmentShader::exp_texture(double s_front, double s_back, double l
     // overflow): the texture's row v / kappa_max would be inf / inf; integrated directly.
     if (length > max_length_ || !(kappa_max_ > 0) || !std::isfinite(kappa_max_))
         return exact(s_front, s_back, length);
-    const double v = 0.5 * (tf_.extinction(s_front) + tf_.extinction(s_back));
+    // Halves added (two extinctions near the largest double would sum to inf), and the row
+    // at most the last: v <= kappa_max up to rounding.
+    const double v = 0.5 * tf_.extinction(s_front) + 0.5 * tf_.extinction(s_back);
     const double x = length / max_length_ * (kExpSize - 1);
-    const double y = v / kappa_max_ * (kExpSize - 1);
+    const double y = std::min(v / kappa_max_, 1.0) * (kExpSize - 1);
     const int i = std::min(static_cast<int>(x), kExpSize - 2);
     const int j = std::min(static_cast<int>(y), kExpSize - 2);
     const double fx = x - i, fy = y - j;

@@ -106,6 +106,11 @@ TEST(MeshFuzzFindings, ExpTextureOfHugeEdgesAndExtinctions) {
                                           {{0, 0.5}, {1, 0.9}}, 1e-320);
     auto plain = TransferFunction::create({{0, Vec3(1, 0.5, 0)}, {1, Vec3(0, 0.5, 1)}},
                                           {{0, 0.5}, {1, 0.9}}, 1.0);
+    // Extinctions near the largest double (-ln(0.1) / 2.3e-308 = 1.0e308): their sum, and the
+    // texture's kappa_max * j, overflowed to inf (fuzz_mesh_pipeline, sixth run: NaN pixels).
+    auto huge = TransferFunction::create({{0, Vec3(1, 0.5, 0)}, {1, Vec3(0, 0.5, 1)}},
+                                         {{0, 0.5}, {1, 0.9}}, 2.3e-308);
+    ASSERT_TRUE(huge.ok());
     ASSERT_TRUE(thick.ok());
     ASSERT_TRUE(plain.ok());
     const double inf = std::numeric_limits<double>::infinity();
@@ -113,7 +118,8 @@ TEST(MeshFuzzFindings, ExpTextureOfHugeEdgesAndExtinctions) {
         const TransferFunction* tf;
         double max_length, length;
     };
-    for (const Case& c : {Case{&thick.value(), 2.0, 1.0}, Case{&plain.value(), inf, 1.0},
+    for (const Case& c : {Case{&thick.value(), 2.0, 1.0}, Case{&huge.value(), 2.0, 1.0},
+                          Case{&huge.value(), 2.0, 1e-300}, Case{&plain.value(), inf, 1.0},
                           Case{&plain.value(), inf, 1e200}, Case{&plain.value(), inf, 1e-3}}) {
         SCOPED_TRACE(c.max_length);
         const SegmentShader shader(*c.tf, Integrator::kExpTexture, c.max_length);
