@@ -850,7 +850,8 @@ ShadedSegment SegmentShader::preintegrated(double s_front, double s_back, double
     thread_local std::vector<SegmentColors::Piece> storage;
     const SegmentColors colors(tf_, breakpoints_, s_front, s_back, storage);
     const double alpha = -std::expm1(-tau);
-    return {Vec3f(colors.mean_color(tau / (1.0 + tau)) * alpha), static_cast<float>(alpha)};
+    const double r = tau < std::numeric_limits<double>::infinity() ? tau / (1.0 + tau) : 1.0;
+    return {Vec3f(colors.mean_color(r) * alpha), static_cast<float>(alpha)};
 }
 
 inline ShadedSegment SegmentShader::preintegrated_finish(double s_front, double s_back,
@@ -859,7 +860,10 @@ inline ShadedSegment SegmentShader::preintegrated_finish(double s_front, double 
     constexpr int n = kMeanScalars;
     if (!(tau > 0)) return {Vec3f(0.0f), 0.0f};
     const float alpha = 1.0f - exp_neg(tau);
-    const float z = tau / (1.0f + tau) * static_cast<float>(kMeanDepths - 1);
+    // r = tau / (1 + tau), 1 for an infinite depth (a segment longer than a float, 3.4e38:
+    // inf / inf was NaN, cast to int, a read outside the table).
+    const float r = tau < std::numeric_limits<float>::infinity() ? tau / (1.0f + tau) : 1.0f;
+    const float z = r * static_cast<float>(kMeanDepths - 1);
     const int i = std::min(static_cast<int>(x), n - 2);
     const int j = std::min(static_cast<int>(y), n - 2);
     const int k = std::min(static_cast<int>(z), kMeanDepths - 2);

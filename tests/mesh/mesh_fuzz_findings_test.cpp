@@ -131,5 +131,28 @@ TEST(MeshFuzzFindings, ExpTextureOfHugeEdgesAndExtinctions) {
     }
 }
 
+TEST(MeshFuzzFindings, SegmentLongerThanAFloat) {
+    // fuzz_mesh_pipeline, seventh run: the default (preintegrated) integrator took the optical
+    // depth in float: a segment longer than 3.4e38 (a mesh with coordinates near 1e39) gave
+    // tau = inf and r = tau / (1 + tau) = NaN, cast to int: a read outside the mean-colour
+    // table (UBSan; garbage or a crash in a normal build). r is now 1 there (infinitely thick:
+    // the colour at the front), as in the directly integrated cells.
+    auto tf = TransferFunction::create({{0, Vec3(1, 0.5, 0)}, {1, Vec3(0, 0.5, 1)}},
+                                       {{0, 0.1}, {1, 0.2}}, 1.0);
+    ASSERT_TRUE(tf.ok());
+    for (Integrator integrator :
+         {Integrator::kPreintegrated, Integrator::kExact, Integrator::kExpTexture}) {
+        const SegmentShader shader(tf.value(), integrator, 1.0);
+        for (double length : {1e39, 1e300, std::numeric_limits<double>::infinity()}) {
+            SCOPED_TRACE(length);
+            const ShadedSegment seg = shader.shade(0.25, 0.75, length);
+            EXPECT_NEAR(seg.alpha, 1.0f, 1e-6f);
+            // The colour at the front (0.25): opaque at once.
+            EXPECT_NEAR(seg.color[0], 0.75f, 0.01f);
+            EXPECT_NEAR(seg.color[2], 0.25f, 0.01f);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace tr
