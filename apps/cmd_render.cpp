@@ -72,8 +72,10 @@ Result<int> first_time_step(const std::string& text) {
                       "--time-step takes a step (0, 1, ...) or all, not '" + text + "'");
 }
 
-// The quick-look scene of the mesh at `args.input` (loaded through the pipeline, which keeps it).
-Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
+// The quick-look scene of the mesh at `args.input` (loaded through the pipeline, which keeps it);
+// `notes` receives what was chosen (printed after the picture: an error stays one line).
+Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args,
+                          std::vector<std::string>& notes) {
     TR_TRY(QuickSceneOptions options, quick_scene_options(args.quick));
     if (!parse_image_size(args.size, options.width, options.height)) {
         return make_error(ErrorCode::kInvalidArgument, "--size must be WxH with sides in [1, " +
@@ -81,6 +83,7 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
                                                            "], not " + args.size);
     }
     TR_TRY(options.time_step, first_time_step(args.time_step));
+    TR_TRY_STATUS(check_picture_memory(options.width, options.height));  // before the loading
     QuickFileOptions file = quick_file_options(args.quick);
     // More volumes in the same space: MESH:ARRAY each (the array after the last colon).
     for (const std::string& spec : args.volumes) {
@@ -91,10 +94,7 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args) {
         }
         file.more.emplace_back(spec.substr(0, colon), spec.substr(colon + 1));
     }
-    std::vector<std::string> notes;
-    auto scene = quick_scene_of_file(pipeline, args.input, options, file, &notes);
-    print_notes(notes);
-    return scene;
+    return quick_scene_of_file(pipeline, args.input, options, file, &notes);
 }
 
 // The frames of an orbit (--orbit) or of every time step (--time-step all), each written as
@@ -248,6 +248,7 @@ int run_render(const RenderArgs& args) {
     pipeline_options.progress = terminal_progress();
     Pipeline pipeline(pipeline_options);
     Scene scene;
+    std::vector<std::string> quick_notes;  // printed with the first picture
     if (scene_mode) {
         auto read = read_scene(args.input);
         if (!read.ok()) return report_error(read.error());
@@ -266,7 +267,7 @@ int run_render(const RenderArgs& args) {
             }
         }
     } else {
-        auto quick = quick_scene(pipeline, args);
+        auto quick = quick_scene(pipeline, args, quick_notes);
         if (!quick.ok()) return report_error(quick.error());
         scene = std::move(quick).value();
     }
@@ -317,6 +318,8 @@ int run_render(const RenderArgs& args) {
                         (args.legend == "auto" && !scene_mode && args.quick.look != "classic");
     const auto picture = [&](const Scene& view) -> Result<RenderResult> {
         TR_TRY(RenderResult result, pipeline.render(view, options));
+        print_notes(quick_notes);
+        quick_notes.clear();
         print_notes(result.notes);
         // The classic look had no legend: its pictures stay comparable.
         if (legend || args.bounding_box || args.axes) {

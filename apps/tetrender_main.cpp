@@ -2,6 +2,7 @@
 #include <apps/cli_common.h>
 #include <apps/commands.h>
 #include <core/config.h>
+#include <core/memory_budget.h>
 
 #include <CLI/CLI.hpp>
 
@@ -62,6 +63,13 @@ int main(int argc, char** argv) {
                  ": volume rendering of unstructured FEM and CFD meshes"};
     app.set_version_flag("--version", std::string("tetrender ") + TETRENDER_VERSION);
     app.require_subcommand(1);
+    // Every subcommand takes it (options a subcommand does not know fall through to here).
+    std::string max_memory;
+    app.add_option("--max-memory", max_memory,
+                   "The most memory to take, e.g. 8G or 512M: a mesh or picture that would "
+                   "need more is refused up front, saying what it would take (default: 80% of "
+                   "this machine's memory)");
+    app.fallthrough();
     auto info = add_info_command(app);
     auto tetrahedralize = add_tetrahedralize_command(app);
     auto demo = add_demo_command(app);
@@ -72,6 +80,11 @@ int main(int argc, char** argv) {
     auto compare = add_compare_command(app);
     auto advect = add_advect_command(app);
     auto spotnoise = add_spotnoise_command(app);
+    for (CLI::App* sub : app.get_subcommands({})) {
+        sub->footer(
+            "Also: --max-memory SIZE (e.g. 8G): refuse up front what would need more "
+            "(default: 80% of this machine's memory)");
+    }
     if (argc > 1 && argv[1][0] != '-') {
         const std::string message = unknown_subcommand_message(app, argv[1]);
         if (!message.empty()) {
@@ -91,6 +104,14 @@ int main(int argc, char** argv) {
         // One line (CLI11's own exit() adds "Run with --help for more information.").
         std::fprintf(stderr, "tetrender: %s\n", e.what());
         return kExitUsage;
+    }
+    if (!max_memory.empty()) {
+        const auto budget = tr::parse_byte_size(max_memory);
+        if (!budget.ok()) {
+            std::fprintf(stderr, "tetrender: --max-memory: %s\n", budget.error().message.c_str());
+            return kExitUsage;
+        }
+        tr::set_memory_budget(*budget);
     }
     try {
         if (app.got_subcommand("info")) return info();

@@ -50,6 +50,10 @@ Result<Integrator> integrator_named(std::string_view name);   // preintegrated, 
 // Sets options.integrator from a name, or options.reference for "reference".
 Status set_integrator_option(RenderOptions& options, std::string_view name);
 
+// Whether a width x height picture's buffers fit the memory budget (core/memory_budget.h):
+// Pipeline::check's test, for callers that know the size before they load anything.
+Status check_picture_memory(int width, int height);
+
 struct RenderResult {
     Image image;
     NamedStats stats;                // each stage's time (ms) and counts, in order

@@ -8,6 +8,7 @@
 #include <apps/viewer/viewer_panel.h>
 #include <apps/viewer/viewer_scene.h>
 #include <apps/viewer/volume_view.h>
+#include <core/memory_budget.h>
 #include <project/colormap.h>
 #include <project/gl/gl_renderer.h>
 
@@ -50,6 +51,7 @@ struct Args {
     double opacity = 0;
     double unit_distance = 0;
     int time_step = 0;
+    std::string max_memory;
     apps::QuickLookArgs quick;  // mesh mode: the quick look's options beyond the four above
     std::vector<std::string> quick_given;  // those given (refused with a scene file)
     bool panel_in_screenshot = false;
@@ -91,6 +93,15 @@ int fail(const std::string& message) {
 }
 
 int run(const Args& args) {
+    if (!args.max_memory.empty()) {
+        const auto budget = parse_byte_size(args.max_memory);
+        if (!budget.ok()) {
+            std::fprintf(stderr, "tetrender-view: --max-memory: %s\n",
+                         budget.error().message.c_str());
+            return apps::kExitUsage;
+        }
+        set_memory_budget(*budget);
+    }
     ViewerOptions options;
     options.input = args.input;
     options.colormap = args.colormap;
@@ -341,6 +352,9 @@ int main(int argc, char** argv) {
            "Largest opacity: a mesh's ramp's top (default 0.5, as `tetrender render`), or a "
            "scene's opacity points scaled to it")
         ->check(CLI::Range(0.0, 0.999));
+    app.add_option("--max-memory", args.max_memory,
+                   "The most memory to take, e.g. 8G: a mesh that would need more is refused up "
+                   "front (default: 80% of this machine's memory)");
     app.add_option("--time-step", args.time_step, "Mesh mode: the time step to read (default 0)")
         ->check(CLI::NonNegativeNumber);
     tr::apps::add_quick_look_options(app, args.quick, false, "Mesh mode: ");

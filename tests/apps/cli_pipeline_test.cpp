@@ -178,6 +178,35 @@ TEST(CliPipelineBadInput, OutputPathsAreCheckedBeforeTheWork) {
     std::filesystem::remove_all(dir);
 }
 
+TEST(CliPipelineBadInput, WhatWouldExceedTheMemoryBudgetIsRefusedUpFront) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = shell_quote(write_block(dir));
+    const std::string out = shell_quote(dir + "/x.png");
+    // The block's 12 hexahedra split into 72 tets (110 bytes each, estimated): over 4 kB.
+    expect_one_line_error(run_cli("info " + mesh + " --max-memory 4k"), 1,
+                          "tetrahedralizing 12 cells would take about 7.7 kB, more than the "
+                          "memory budget of 4.0 kB (--max-memory)");
+    expect_one_line_error(
+        run_cli("render " + mesh + " --size 8192x8192 --max-memory 512M -o " + out), 1,
+        "a 8192x8192 picture would take about 1.0 GB, more than the memory "
+        "budget of 512 MB");
+    // A scene file's picture too; the option before or after the subcommand.
+    auto run = run_cli("render " + mesh + " --scalar t --size 64x64 --legend off --write-scene " +
+                       shell_quote(dir + "/s.json") + " -o " + out);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    std::filesystem::remove(dir + "/x.png");
+    run = run_cli("--max-memory 64k render " + shell_quote(dir + "/s.json") + " -o " + out);
+    EXPECT_EQ(run.exit_code, 0) << run.err;  // 64x64 and 72 tets fit 64 kB
+    std::filesystem::remove(dir + "/x.png");
+    expect_one_line_error(
+        run_cli("render " + shell_quote(dir + "/s.json") + " --max-memory 32k -o " + out), 1,
+        "a 64x64 picture would take about 64 kB");
+    EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
+    expect_one_line_error(run_cli("info " + mesh + " --max-memory 12Q"), 2,
+                          "--max-memory: a memory size is a number");
+    std::filesystem::remove_all(dir);
+}
+
 // Quick mode's pictures: the mesh `block` at 160 x 120 with `options`, as floats.
 Image quick_picture(const std::string& dir, const std::string& mesh, const std::string& options,
                     const std::string& name) {
