@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string>
 #include <vector>
+#include <zlib.h>
 
 namespace tr {
 namespace {
@@ -84,6 +85,164 @@ TEST(IoFuzzFindings, HugeCellOffsetIsAnError) {
     write_file(dir / "ascii.vtu", ascii);
     const std::string message = expect_error(read_mesh(dir / "ascii.vtu"), dir / "ascii.vtu");
     EXPECT_NE(message.find("Cells: the last offset"), std::string::npos) << message;
+}
+
+// How a binary VTK XML array is stored.
+struct Storage {
+    bool inline_base64 = false;    // format="binary" (else appended)
+    bool appended_base64 = false;  // <AppendedData encoding="base64"> (else raw)
+    bool uint64_header = false;    // header_type="UInt64"
+    bool zlib = false;             // compressor="vtkZLibDataCompressor", one block per array
+};
+
+std::string base64(const std::string& bytes) {
+    static const char* const kDigits =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (std::size_t i = 0; i < bytes.size(); i += 3) {
+        std::uint32_t v = static_cast<unsigned char>(bytes[i]) << 16;
+        if (i + 1 < bytes.size()) v |= static_cast<unsigned char>(bytes[i + 1]) << 8;
+        if (i + 2 < bytes.size()) v |= static_cast<unsigned char>(bytes[i + 2]);
+        out += kDigits[(v >> 18) & 63];
+        out += kDigits[(v >> 12) & 63];
+        out += i + 1 < bytes.size() ? kDigits[(v >> 6) & 63] : '=';
+        out += i + 2 < bytes.size() ? kDigits[v & 63] : '=';
+    }
+    return out;
+}
+
+// One tetrahedron as VTK's XML writer stores it with `storage` (little-endian host assumed, as
+// VTK writes it): each array is a header (its byte count; compressed: 1 block, its size twice,
+// the compressed size) and its data, encoded separately in base64. The cell ends at
+// `last_offset` (4 when valid). `extra_points` unused points come after the tet's four; a second
+// piece, a copy of the first, declares `second_piece_cells` cells when that is not empty.
+std::string stored_tet(std::int64_t last_offset, const Storage& storage, int extra_points = 0,
+                       const std::string& second_piece_cells = "") {
+    const auto word = [&](std::uint64_t v) {
+        return storage.uint64_header ? std::string(reinterpret_cast<const char*>(&v), 8)
+                                     : std::string(reinterpret_cast<const char*>(&v), 4);
+    };
+    const auto encode = [&](const void* values, std::size_t n) {
+        const std::string raw(static_cast<const char*>(values), n);
+        std::string header, data = raw;
+        if (storage.zlib) {
+            std::vector<Bytef> z(compressBound(static_cast<uLong>(n)));
+            uLongf z_size = static_cast<uLongf>(z.size());
+            EXPECT_EQ(compress(z.data(), &z_size, reinterpret_cast<const Bytef*>(raw.data()),
+                               static_cast<uLong>(n)),
+                      Z_OK);
+            data.assign(reinterpret_cast<const char*>(z.data()), z_size);
+            header = word(1) + word(n) + word(n) + word(z_size);
+        } else {
+            header = word(n);
+        }
+        const bool b64 = storage.inline_base64 || storage.appended_base64;
+        return b64 ? base64(header) + base64(data) : header + data;
+    };
+    std::vector<float> points = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    std::uint32_t lcg = 12345;  // values that do not compress
+    for (int i = 0; i < 3 * extra_points; ++i) {
+        lcg = lcg * 1664525u + 1013904223u;
+        points.push_back(static_cast<float>(lcg >> 8) / 16777216.0f);
+    }
+    const std::int64_t conn[] = {0, 1, 2, 3};
+    const std::int64_t offs[] = {last_offset};
+    const std::uint8_t types[] = {10};
+    std::string appended;
+    const auto array = [&](const char* type, const char* name, int ncomp, const std::string& text) {
+        std::string tag = std::string("<DataArray type=\"") + type + "\" Name=\"" + name +
+                          "\" NumberOfComponents=\"" + std::to_string(ncomp) + "\" format=\"";
+        if (storage.inline_base64) return tag + "binary\">\n" + text + "\n</DataArray>";
+        tag += "appended\" offset=\"" + std::to_string(appended.size()) + "\"/>";
+        appended += text;
+        return tag;
+    };
+    const std::string arrays =
+        "<Points>" + array("Float32", "Points", 3, encode(points.data(), 4 * points.size())) +
+        "</Points>\n<Cells>" + array("Int64", "connectivity", 1, encode(conn, sizeof conn)) +
+        array("Int64", "offsets", 1, encode(offs, sizeof offs)) +
+        array("UInt8", "types", 1, encode(types, sizeof types)) + "</Cells>";
+    const auto piece = [&](const std::string& cells) {
+        return "<Piece NumberOfPoints=\"" + std::to_string(4 + extra_points) +
+               "\" NumberOfCells=\"" + cells + "\">\n" + arrays + "\n</Piece>\n";
+    };
+    return std::string(
+               "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" "
+               "version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"") +
+           (storage.uint64_header ? "UInt64" : "UInt32") + "\"" +
+           (storage.zlib ? " compressor=\"vtkZLibDataCompressor\"" : "") +
+           ">\n<UnstructuredGrid>\n" + piece("1") +
+           (second_piece_cells.empty() ? std::string() : piece(second_piece_cells)) +
+           "</UnstructuredGrid>\n" +
+           (storage.inline_base64 ? std::string()
+                                  : std::string("<AppendedData encoding=\"") +
+                                        (storage.appended_base64 ? "base64" : "raw") + "\">\n_" +
+                                        appended + "\n</AppendedData>\n") +
+           "</VTKFile>\n";
+}
+
+// The open half of finding 4: the last offset was read only from ASCII arrays and raw appended
+// blocks without compression. A base64 (format="binary", or appended base64) or zlib-compressed
+// offsets array still let it through: 2^63 - 1 segfaulted VTK (exit 139 from `tetrender info`,
+// measured on all 10 storages below), 0x32223d74657366 gave "out of memory while reading". Now
+// each is "Cells: the last offset 9.2233720368547758e+18 is not plausible for a file of N
+// bytes"; the valid tet reads from each storage.
+TEST(IoFuzzFindings, HugeCellOffsetInBase64OrCompressedArrayIsAnError) {
+    TempDir dir;
+    std::vector<Storage> storages;
+    for (const bool uint64_header : {false, true}) {
+        for (const bool zlib : {false, true}) {
+            storages.push_back({true, false, uint64_header, zlib});             // inline base64
+            storages.push_back({false, true, uint64_header, zlib});             // appended base64
+            if (zlib) storages.push_back({false, false, uint64_header, zlib});  // appended raw
+        }
+    }
+    ASSERT_EQ(storages.size(), 10u);
+    for (const Storage& s : storages) {
+        const std::string name = std::string(s.inline_base64 ? "inline" : "appended") +
+                                 (s.appended_base64 ? "_base64" : "") +
+                                 (s.uint64_header ? "_u64" : "_u32") + (s.zlib ? "_zlib" : "");
+        SCOPED_TRACE(name);
+        const auto ok_path = dir / (name + "_ok.vtu");
+        write_file(ok_path, stored_tet(4, s));
+        auto ok = read_mesh(ok_path);
+        ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+        EXPECT_EQ(ok.value().num_cells(), 1u);
+        EXPECT_NEAR(test::total_abs_volume(ok.value()), 1.0 / 6, 1e-12);
+        for (const std::int64_t last :
+             {std::int64_t{0x7fffffffffffffff}, std::int64_t{0x32223d74657366}, std::int64_t{-1}}) {
+            SCOPED_TRACE(last);
+            const auto path = dir / (name + "_" + std::to_string(last) + ".vtu");
+            write_file(path, stored_tet(last, s));
+            const std::string message = expect_error(read_mesh(path), path);
+            EXPECT_NE(message.find("Cells: the last offset"), std::string::npos) << message;
+        }
+    }
+    // Inline arrays put the Cells section (and later pieces) far into the file: the pre-check
+    // looked at the first 64 KB only. 6000 random points (96 KB of base64; 86 KB compressed)
+    // before it: 2^63 - 1 there segfaulted VTK (exit 139, measured, both storages); the offsets
+    // are now found anywhere, and so is a second piece's NumberOfCells.
+    const Storage inline_zlib{true, false, false, true};
+    const Storage inline_plain{true, false, false, false};
+    for (const Storage& s : {inline_plain, inline_zlib}) {
+        SCOPED_TRACE(s.zlib);
+        const auto ok_path = dir / "far_ok.vtu";
+        write_file(ok_path, stored_tet(4, s, 6000));
+        auto ok = read_mesh(ok_path);
+        ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+        EXPECT_EQ(ok.value().num_cells(), 1u);
+        const auto far = dir / "far.vtu";
+        write_file(far, stored_tet(0x7fffffffffffffff, s, 6000));
+        std::string message = expect_error(read_mesh(far), far);
+        EXPECT_NE(message.find("Cells: the last offset 9.2233720368547758e+18"), std::string::npos)
+            << message;
+        const auto second = dir / "second_piece.vtu";
+        write_file(second, stored_tet(4, s, 6000, "100000000000000000000"));
+        message = expect_error(read_mesh(second), second);
+        EXPECT_NE(message.find("NumberOfCells=\"100000000000000000000\" is not plausible"),
+                  std::string::npos)
+            << message;
+    }
 }
 
 // fuzz_legacy_vtk, after 32k runs: a dataset-level FIELD whose array has a type VTK does not
