@@ -65,7 +65,11 @@ Result<Scene> quick_scene_of_file(Pipeline& pipeline, const std::filesystem::pat
     std::vector<std::string> scene_notes;
     const TetMesh& shown = handed_over ? *handed_over : mesh;
     auto scene = make_quick_scene(volume.mesh, shown, options, more, &scene_notes);
-    if (!scene.ok()) return with_where(scene.error(), path.string());
+    if (!scene.ok()) {
+        Error e = scene.error();
+        if (e.where.empty()) e.where = path.string();  // else it names the file already
+        return e;
+    }
     const bool ones = handed_over && !as_point && !as_cell;
     if (!ones) said.insert(said.end(), scene_notes.begin(), scene_notes.end());
     if (handed_over) scene->volumes[0].tets = handed_over;  // the file has no such array
