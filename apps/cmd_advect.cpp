@@ -1,5 +1,6 @@
 // tetrender advect MESH --vectors NAME --frames DIR: a noise texture advected over a slice of
 // the mesh by its vector field, one PNG per frame (flowtex/, docs/flowtex.md).
+#include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
 #include <io/read_surface.h>
@@ -170,26 +171,26 @@ std::function<int()> add_advect_command(CLI::App& app) {
     cmd->add_option("--movie", args->movie,
                     "Encode the frames into a movie (.mp4, .webm, .gif) with the ffmpeg program");
     cmd->add_option("--fps", args->fps, "Movie frames per second (default 24)")
-        ->check(CLI::Range(0.1, 1000.0));
+        ->check(in_range(0.1, 1000.0));
     cmd->add_option("--steps", args->steps, "Frames after the first (default 100)")
-        ->check(CLI::Range(0, 100000));
+        ->check(in_range(0, 100000));
     cmd->add_option("--dt", args->dt,
                     "Flow time per frame (default: steady, 1/200 of the slice per frame at the "
                     "mean speed; unsteady, the file's time span over the steps)")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_flag("--unsteady", args->unsteady,
                   "Velocity linear in time over all the file's time steps (.pvd, Exodus)");
     cmd->add_option("--time-step", args->time_step, "The time step to read (steady; default 0)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegativeInteger);
     cmd->add_option("--method", args->method,
                     "backward (points fixed, texture coordinates traced back; default) or "
                     "forward (points moved along paths)");
     cmd->add_option("--resolution", args->resolution,
                     "Sheet squares along its longer side (default 256)")
-        ->check(CLI::Range(1, 8192));
+        ->check(in_range(1, 8192));
     cmd->add_option("--reinject", args->reinject,
                     "Frames between re-injections of fresh texture, even (default 40; 0: off)")
-        ->check(CLI::Range(0, 100000));
+        ->check(in_range(0, 100000));
     cmd->add_option("--size", args->size, "Image size WxH (default 512x512)");
     return [args] { return run_advect(*args); };
 }

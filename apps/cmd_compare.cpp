@@ -1,6 +1,7 @@
 // tetrender compare A B: how far one picture is from another (PNG or PFM), over the pixels that
 // matter: PSNR over the foreground (where either differs from the background), the largest
 // difference, and a difference picture on request.
+#include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
 #include <io/write_image.h>
@@ -88,7 +89,7 @@ std::function<int()> add_compare_command(CLI::App& app) {
         ->delimiter(',');
     cmd->add_option("--diff", args->diff, "Write |a - b| times --scale as a picture");
     cmd->add_option("--scale", args->scale, "Difference picture gain (default 8)")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_flag("--json", args->json, "One JSON line");
     return [args] { return run_compare(*args); };
 }

@@ -1,6 +1,7 @@
 // tetrender demo: the built-in scenes (pipeline/demo_scene.h), flow past a cylinder standing in
 // a box rendered with the cylinder opaque; --flowvol grows dye through it, --fused adds a heat
 // plume on its own hexahedral grid in the same space.
+#include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
 #include <io/write_image.h>
@@ -160,14 +161,13 @@ std::function<int()> add_demo_command(CLI::App& app) {
                     "Also write the demo mesh and fields (.vtu); with --fused the plume's tets "
                     "too, next to it as NAME_plume.vtu");
     cmd->add_option("--tets", args->tets, "About how many tets (default 200000)")
-        ->check(CLI::Range(1000, 20000000));
+        ->check(in_range(1000, 20000000));
     cmd->add_option("--plume-tets", args->plume_tets,
                     "--fused: about how many tets the plume's grid splits into (default: --tets)")
-        ->check(CLI::Range(100, 20000000));
-    cmd->add_option("--width", args->width, "Image width (default 960)")
-        ->check(CLI::Range(1, 16384));
+        ->check(in_range(100, 20000000));
+    cmd->add_option("--width", args->width, "Image width (default 960)")->check(in_range(1, 16384));
     cmd->add_option("--height", args->height, "Image height (default 540)")
-        ->check(CLI::Range(1, 16384));
+        ->check(in_range(1, 16384));
     cmd->add_option("--scalar", args->scalar, "vorticity (default), velocity, pressure");
     cmd->add_option("--integrator", args->integrator,
                     "preintegrated (default), exact, exp-texture");
@@ -175,7 +175,7 @@ std::function<int()> add_demo_command(CLI::App& app) {
                     "projected-tetrahedra (default; --fused: the exact segment merge), "
                     "pbvr-image, pbvr-object");
     cmd->add_option("--repetitions", args->repetitions, "Stochastic methods: ensemble size")
-        ->check(CLI::Range(1, 1 << 20));
+        ->check(in_range(1, 1 << 20));
     cmd->add_option("--seed", args->seed, "Stochastic methods: random seed");
     cmd->add_option("--depth", args->depth,
                     "pbvr-image: where a particle lies on its segment: inverse-cdf (default), "

@@ -1,5 +1,6 @@
 // tetrender flowvol MESH --vectors NAME --seed-center x,y,z --seed-size w,h: dye released
 // through a polygon, grown layer by layer through the flow, rendered without sorting.
+#include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
 #include <io/write_image.h>
@@ -31,18 +32,6 @@ struct FlowvolArgs {
     std::string mesh_out;
     std::string size = "800x600";
 };
-
-// A number > 0 and finite; the message says so in words (CLI::PositiveNumber printed its
-// range with DBL_MAX's 300 digits).
-const CLI::Validator kPositive(
-    [](std::string& text) -> std::string {
-        double v = 0;
-        if (!CLI::detail::lexical_cast(text, v) || !(v > 0) || !std::isfinite(v)) {
-            return "must be a finite number > 0, not '" + text + "'";
-        }
-        return {};
-    },
-    "POSITIVE");
 
 int run_flowvol(FlowvolArgs args) {
     int width = 0, height = 0;
@@ -145,9 +134,8 @@ std::function<int()> add_flowvol_command(CLI::App& app) {
         ->delimiter(',');
     cmd->add_option("--seed-res", args->spec.seed_resolution,
                     "Quads per side of the polygon (default 32)")
-        ->check(CLI::Range(1, 4096));
-    cmd->add_option("--steps", args->spec.steps, "Layers (default 50)")
-        ->check(CLI::Range(1, 100000));
+        ->check(in_range(1, 4096));
+    cmd->add_option("--steps", args->spec.steps, "Layers (default 50)")->check(in_range(1, 100000));
     cmd->add_option("--dt", args->spec.dt, "Time per layer (default 0.05)")->check(kPositive);
     cmd->add_option("--split-threshold", args->spec.split_threshold,
                     "Split front edges longer than this many seed spacings (default 2; 0: off)")
@@ -162,7 +150,7 @@ std::function<int()> add_flowvol_command(CLI::App& app) {
                                        "of --time-step)");
     cmd->add_option("--time-step", args->time_step,
                     "The time step to read (steady), or to start from (unsteady); default 0")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegativeInteger);
     cmd->add_flag("--context", args->spec.context,
                   "Draw the domain's boundary as a faint veil, for context");
     cmd->add_option("-o,--output", args->output, "Output image (.png or .pfm)")->required();

@@ -1,4 +1,5 @@
 // tetrender info FILE: what a mesh file holds and what tetrahedralization makes of it.
+#include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
 #include <mesh/face_adjacency.h>
@@ -206,11 +207,11 @@ std::function<int()> add_info_command(CLI::App& app) {
     cmd->add_option("file", args->path, "Mesh file (.vtu .vtk .exo .pvd ...)")->required();
     cmd->add_flag("--json", args->json, "Print one JSON object instead of text");
     cmd->add_option("--time-step", args->load.time_step, "Time step to read (default 0)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegativeInteger);
     cmd->add_option("--merge-tolerance", args->load.merge_tolerance,
                     "Also merge points closer than this fraction of the shortest edge at them "
                     "(default 0: exactly coincident points only)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_flag("--no-merge", args->load.no_merge, "Do not merge coincident points");
     return [args] { return run_info(*args); };
 }

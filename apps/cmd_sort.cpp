@@ -1,5 +1,6 @@
 // tetrender sort-check MESH: every sorter against the independent ray verifier over random
 // views. tetrender sort SCENE.json --order-out FILE: the back-to-front order for a scene.
+#include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
 #include <project/scene.h>
@@ -189,7 +190,7 @@ std::function<int()> add_sort_check_command(CLI::App& app) {
         "sorter that claims exactness is wrong)");
     cmd->add_option("mesh", args->path, "Mesh file")->required();
     cmd->add_option("--views", args->views, "Random views per sorter (default 8)")
-        ->check(CLI::Range(1, 100000));
+        ->check(in_range(1, 100000));
     cmd->add_option("--size", args->size, "Rays per view as WxH (default 128x128)");
     cmd->add_flag("--orthographic", args->orthographic, "Orthographic views");
     cmd->add_flag("--inside", args->inside, "Put the eye inside the mesh's bounds");
@@ -198,7 +199,7 @@ std::function<int()> add_sort_check_command(CLI::App& app) {
     cmd->add_option("--seed", args->seed, "Seed of the random views (default 1)");
     cmd->add_flag("--json", args->json, "One JSON line per sorter and view");
     cmd->add_option("--time-step", args->load.time_step, "Time step to read (default 0)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegativeInteger);
     return [args] { return run_sort_check(*args); };
 }
 

@@ -1,6 +1,7 @@
 // tetrender spotnoise MESH --scalar S --iso V --vectors NAME --frames DIR: spot noise near a
 // contour surface, advected by the mesh's vector field, one PNG per frame (flowtex/,
 // docs/flowtex.md).
+#include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
 #include <io/read_surface.h>
@@ -128,25 +129,25 @@ std::function<int()> add_spotnoise_command(CLI::App& app) {
     cmd->add_option("--vectors", args->vectors, "The velocity array")->required();
     cmd->add_option("--frames", args->frames, "Folder for frame_NNNN.png (created)")->required();
     cmd->add_option("--count", args->count, "Spots (default 20000)")
-        ->check(CLI::Range(std::size_t{1}, kMaxSpots));
+        ->check(in_range(std::size_t{1}, kMaxSpots));
     cmd->add_option("--steps", args->steps, "Frames after the first (default 100)")
-        ->check(CLI::Range(0, 100000));
+        ->check(in_range(0, 100000));
     cmd->add_option("--dt", args->dt,
                     "Flow time per frame (default: the mean speed over the spots carries a spot "
                     "1/400 of the mesh's diagonal per frame)")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_option("--band", args->band,
                     "Half-width of the band around the surface, world units (default: the "
                     "diagonal / 100)")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     cmd->add_option("--lifetime", args->lifetime,
                     "Frames a spot lives before it is reseeded (default 60; 0: until it leaves)")
-        ->check(CLI::Range(0, 1000000));
+        ->check(in_range(0, 1000000));
     cmd->add_option("--surface", args->surfaces,
                     "Opaque surface file(s) drawn under the spots, which are depth-tested "
                     "against them");
     cmd->add_option("--time-step", args->time_step, "The time step to read (default 0)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegativeInteger);
     cmd->add_option("--size", args->size, "Image size WxH (default 512x512)");
     cmd->add_option("--movie", args->movie,
                     "Also encode the frames into out.mp4|webm|gif at 25 fps (needs ffmpeg)");

@@ -1,5 +1,6 @@
 // tetrender tetrahedralize IN -o OUT.vtu: split cells, Delaunay a point cloud, mesh a closed
 // surface with TetGen, or fill a non-convex mesh's concavities with virtual tets.
+#include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
 #include <core/config.h>
@@ -120,18 +121,18 @@ std::function<int()> add_tetrahedralize_command(CLI::App& app) {
                               ->expected(0, 1);
     cmd->add_option("--quality", args->quality,
                     "With --tetgen: radius-edge ratio bound (-q), 0 for none (default 2)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_option("--max-volume", args->max_volume,
                     "With --tetgen: largest tet volume (-a), 0 for none (default)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_flag("--convexify", args->convexify,
                   "Add virtual tets filling the space between the mesh and a box around it "
                   "(TetGen), marked by the cell array \"virtual\"");
     cmd->add_option("--merge-tolerance", args->load.merge_tolerance,
                     "Also merge points closer than this fraction of the shortest edge at them")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     cmd->add_option("--time-step", args->load.time_step, "Time step to read (default 0)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegativeInteger);
     return [args, tetgen] {
         args->tetgen = tetgen->count() > 0;
         return run_tetrahedralize(*args);

@@ -1,3 +1,4 @@
+#include <apps/cli_checks.h>
 #include <apps/quick_look_args.h>
 #include <core/camera.h>
 #include <project/colormap_preset.h>
@@ -71,7 +72,7 @@ void add_quick_look_options(CLI::App& app, QuickLookArgs& args, bool with_basics
     app.add_option("--range-percentile", args.range_percent,
                    help("the range from the P-th to the (100-P)-th percentile (default 1; 0: "
                         "the whole range)"))
-        ->check(CLI::Range(0.0, 49.0));
+        ->check(in_range(0.0, 49.0));
     app.add_flag("--log", args.log_scale,
                  help("a log colour scale: colours and opacity spread over log10 of the range "
                       "(of the positive values; those <= 0 take the low end's colour), the "
@@ -80,7 +81,7 @@ void add_quick_look_options(CLI::App& app, QuickLookArgs& args, bool with_basics
         app.add_option("--opacity", args.opacity,
                        help("the opacity at the range's top (default 0.5), a fifth of it at the "
                             "bottom"))
-            ->check(CLI::Range(0.001, 0.999));
+            ->check(in_range(0.001, 0.999));
     }
     app.add_option("--opacity-curve", args.opacity_curve,
                    help("opacity points t:a,... with t in [0, 1] across the range"))
@@ -89,20 +90,20 @@ void add_quick_look_options(CLI::App& app, QuickLookArgs& args, bool with_basics
         app.add_option("--unit-distance", args.unit_distance,
                        help("the thickness a slab of the stated opacity has (default: chosen so "
                             "that a typical ray through the object reaches opacity 0.8)"))
-            ->check(CLI::PositiveNumber);
+            ->check(kPositive);
     }
     app.add_option("--background", args.background, help("background r,g,b in [0, 1]"))
         ->expected(3)
         ->delimiter(',')
-        ->check(CLI::Range(0.0, 1.0));
+        ->check(in_range(0.0, 1.0));
     app.add_option("--azimuth", args.azimuth,
                    help("turn the view about the up axis, degrees (ParaView's Azimuth)"))
-        ->check(CLI::Range(-360.0, 360.0));
+        ->check(in_range(-360.0, 360.0));
     app.add_option("--elevation", args.elevation,
                    help("raise the view towards the up axis, degrees (ParaView's Elevation)"))
-        ->check(CLI::Range(-89.0, 89.0));
+        ->check(in_range(-89.0, 89.0));
     app.add_option("--zoom", args.zoom, help("magnify by this factor (VTK's Zoom)"))
-        ->check(CLI::Range(0.01, 100.0));
+        ->check(in_range(0.01, 100.0));
     app.add_flag("--fit-bounds", args.fit_bounds,
                  help("frame the bounds' sphere instead of the object's projected extent"));
     app.add_option("--camera-position", args.camera_position,
@@ -118,7 +119,7 @@ void add_quick_look_options(CLI::App& app, QuickLookArgs& args, bool with_basics
         ->delimiter(',');
     app.add_option("--camera-view-angle", args.camera_view_angle,
                    help("vertical view angle, degrees (default 30)"))
-        ->check(CLI::Range(0.1, 179.0));
+        ->check(in_range(0.1, 179.0));
     app.add_option("--camera", args.camera_file,
                    help("a camera ParaView saved (.pvcc: Save Camera) to look from"));
     app.add_option("--colormap-file", args.colormap_file,

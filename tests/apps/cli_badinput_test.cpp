@@ -157,5 +157,52 @@ TEST(CliBadInput, FlowvolNumbersSayWhatIsWrong) {
     std::filesystem::remove_all(dir);
 }
 
+// Numeric options of every command (issue 13): CLI11's PositiveNumber / NonNegativeNumber printed
+// their range with DBL_MAX's 309 digits ("advect --dt 0": 367 bytes, "--time-step -1": 375
+// bytes, measured) and CLI::Range "Value 0 not in range 0.100000 to 1000.000000". Each is now
+// one short line saying what the value must be, exit 2, before any file is read (the mesh and
+// pictures here do not exist), no output written.
+TEST(CliBadInput, NumericOptionsSayWhatIsWrongInOneLine) {
+    const std::string dir = make_temp_dir();
+    const std::string mesh = shell_quote(dir + "/missing.vtu");
+    const std::string frames = shell_quote(dir + "/frames");
+    const std::string advect = "advect " + mesh + " --vectors V ";
+    const std::string spotnoise =
+        "spotnoise " + mesh + " --scalar s --iso 0 --vectors V --frames " + frames + " ";
+    const struct {
+        std::string args;
+        std::string expected;
+    } cases[] = {
+        {advect + "--dt 0", "--dt: must be a finite number > 0, not '0'"},
+        {advect + "--dt -1e300", "--dt: must be a finite number > 0, not '-1e300'"},
+        {advect + "--fps 0", "--fps: must be a number from 0.1 to 1000, not '0'"},
+        {advect + "--steps -1", "--steps: must be an integer from 0 to 100000, not '-1'"},
+        {advect + "--time-step -1", "--time-step: must be an integer >= 0, not '-1'"},
+        {advect + "--time-step 1.5", "--time-step: must be an integer >= 0, not '1.5'"},
+        {advect + "--resolution 0", "--resolution: must be an integer from 1 to 8192, not '0'"},
+        {advect + "--reinject 100001",
+         "--reinject: must be an integer from 0 to 100000, not '100001'"},
+        {"compare " + shell_quote(dir + "/a.png") + " " + shell_quote(dir + "/b.png") +
+             " --scale 0",
+         "--scale: must be a finite number > 0, not '0'"},
+        {spotnoise + "--dt 0", "--dt: must be a finite number > 0, not '0'"},
+        {spotnoise + "--band inf", "--band: must be a finite number > 0, not 'inf'"},
+        {spotnoise + "--count 0", "--count: must be an integer from 1 to 10000000, not '0'"},
+        {spotnoise + "--lifetime -1", "--lifetime: must be an integer from 0 to 1000000, not '-1'"},
+        {spotnoise + "--time-step -2", "--time-step: must be an integer >= 0, not '-2'"},
+        {"info " + mesh + " --merge-tolerance -1",
+         "--merge-tolerance: must be a finite number >= 0, not '-1'"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.args);
+        const testing::CliRun run = run_cli(c.args);
+        EXPECT_EQ(run.exit_code, 2);
+        EXPECT_EQ(run.err, "tetrender: " + c.expected + "\n");
+        EXPECT_LT(run.err.size(), 120u);
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir + "/frames"));
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace tr

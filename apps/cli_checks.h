@@ -1,0 +1,92 @@
+#pragma once
+// Checks of numeric command-line options whose message is one short line saying what is
+// wrong. CLI11's own (CLI::PositiveNumber, CLI::NonNegativeNumber, CLI::Range) print their bounds
+// with std::to_string: "--dt 0" said "Value 0 not in range 0.000000 to 17976931348623157081...",
+// DBL_MAX's 309 digits (issue 13). With these, CLI11 prints "tetrender: --dt: must be a finite
+// number > 0, not '0'".
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <type_traits>
+
+namespace tr::apps {
+
+namespace cli_checks_detail {
+
+inline std::string number_text(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
+}  // namespace cli_checks_detail
+
+// A finite number > 0.
+inline const CLI::Validator kPositive(
+    [](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !(v > 0) || !std::isfinite(v)) {
+            return "must be a finite number > 0, not '" + text + "'";
+        }
+        return {};
+    },
+    "POSITIVE");
+
+// A finite number >= 0.
+inline const CLI::Validator kNonNegative(
+    [](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !(v >= 0) || !std::isfinite(v)) {
+            return "must be a finite number >= 0, not '" + text + "'";
+        }
+        return {};
+    },
+    "NONNEGATIVE");
+
+// An integer >= 0 that fits an int (time steps).
+inline const CLI::Validator kNonNegativeInteger(
+    [](std::string& text) -> std::string {
+        int v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || v < 0) {
+            return "must be an integer >= 0, not '" + text + "'";
+        }
+        return {};
+    },
+    "NONNEGATIVE");
+
+// A number from `lo` to `hi` (both included): "must be a number from 0.1 to 1000, not '0'";
+// for an integer type T, "must be an integer from 0 to 100000, not '1.5'".
+template <class T>
+CLI::Validator in_range(T lo, T hi) {
+    using cli_checks_detail::number_text;
+    const bool integer = std::is_integral_v<T>;
+    const auto text_of = [](T v) {
+        if constexpr (std::is_integral_v<T>) {
+            return std::to_string(v);
+        } else {
+            return number_text(static_cast<double>(v));
+        }
+    };
+    const std::string bounds = "from " + text_of(lo) + " to " + text_of(hi);
+    return CLI::Validator(
+        [lo, hi, integer, bounds](std::string& text) -> std::string {
+            bool ok = false;
+            if constexpr (std::is_integral_v<T>) {
+                T v{};
+                ok = CLI::detail::lexical_cast(text, v) && v >= lo && v <= hi;
+            } else {
+                double v = 0;
+                ok = CLI::detail::lexical_cast(text, v) && v >= static_cast<double>(lo) &&
+                     v <= static_cast<double>(hi);
+            }
+            if (ok) return {};
+            return std::string("must be ") + (integer ? "an integer " : "a number ") + bounds +
+                   ", not '" + text + "'";
+        },
+        (integer ? "INT in [" : "FLOAT in [") + text_of(lo) + " - " + text_of(hi) + "]");
+}
+
+}  // namespace tr::apps
