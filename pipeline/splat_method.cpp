@@ -1,8 +1,10 @@
 #include <core/parallel.h>
 #include <mesh/field.h>
+#include <project/point_spacing.h>
 #include <project/splat_renderer.h>
 #include <project/vector_splat.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -258,10 +260,22 @@ class Splat final : public RenderMethod {
             }
             return result;
         }
+        // Each splat's scale: the radius array named; else, for points that are not a lattice
+        // (a cloud, a mesh's nodes) and no `spacing` given, each point's local spacing, so that
+        // dense and sparse regions get the optical depth of their own density; else the
+        // lattice spacing.
         std::vector<float> radii;
+        std::string scaled_by = "spacing";
         if (const MethodOption* o = option(scene, "radius")) {
             TR_TRY(radii, point_radii(*loaded->meshes[0], std::get<std::string>(*o),
                                       scene.volumes[0].mesh.string()));
+            scaled_by = "radius array";
+        } else if (!option(scene, "spacing") && compositing == SplatCompositing::kPerSplat &&
+                   !is_axis_aligned_lattice(points)) {
+            const auto spacing_start = std::chrono::steady_clock::now();
+            radii = local_spacing(points);
+            result.stats.set("local_spacing_ms", ms_since(spacing_start));
+            scaled_by = "local spacing";
         }
         const SplatFootprint footprint(kernel);
         SplatInputs in;
@@ -282,6 +296,7 @@ class Splat final : public RenderMethod {
         const std::clock_t cpu = std::clock();
         result.image = render_splats(in, &stats);
         NamedStats& s = result.stats;
+        s.set("scaled_by", scaled_by);
         s.set("raster_ms", stats.raster_ms);
         s.set("raster_cpu_ms", cpu_ms_since(cpu));
         s.set("points", points.size());

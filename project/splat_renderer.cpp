@@ -34,11 +34,10 @@ struct Splat {
 
 }  // namespace
 
-double lattice_spacing(std::span<const Vec3> points) {
-    if (points.size() < 2) return 0.0;
-    // An axis-aligned lattice: as many points as the product of the distinct coordinates per
-    // axis; its spacings, exactly.
-    double count[3], extent[3];
+namespace {
+
+// The distinct coordinates per axis and their extents.
+void axis_counts(std::span<const Vec3> points, double count[3], double extent[3]) {
     for (int k = 0; k < 3; ++k) {
         std::vector<double> c(points.size());
         for (std::size_t i = 0; i < points.size(); ++i) c[i] = points[i][k];
@@ -47,6 +46,23 @@ double lattice_spacing(std::span<const Vec3> points) {
         count[k] = static_cast<double>(c.size());
         extent[k] = c.back() - c.front();
     }
+}
+
+}  // namespace
+
+bool is_axis_aligned_lattice(std::span<const Vec3> points) {
+    if (points.size() < 2) return false;
+    double count[3], extent[3];
+    axis_counts(points, count, extent);
+    return count[0] * count[1] * count[2] == static_cast<double>(points.size());
+}
+
+double lattice_spacing(std::span<const Vec3> points) {
+    if (points.size() < 2) return 0.0;
+    // An axis-aligned lattice: as many points as the product of the distinct coordinates per
+    // axis; its spacings, exactly.
+    double count[3], extent[3];
+    axis_counts(points, count, extent);
     double measure = 1.0, cells = 1.0;
     int dims = 0;
     for (int k = 0; k < 3; ++k) {

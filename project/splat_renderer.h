@@ -79,4 +79,8 @@ Image render_splats(const SplatInputs& in, SplatStats* stats = nullptr);
 // of non-zero extent; 0 when fewer than 2 points or all coincide. Cost: O(n log n).
 double lattice_spacing(std::span<const Vec3> points);
 
+// Whether `points` are a full axis-aligned lattice (as many points as the product of the
+// distinct coordinates per axis, at least 2 along one axis). Cost: O(n log n).
+bool is_axis_aligned_lattice(std::span<const Vec3> points);
+
 }  // namespace tr
