@@ -4,6 +4,7 @@
 // python/tetrender/__init__.py. Errors become tetrender.Error with the library's one line;
 // the GIL is released while reading, tetrahedralizing, rendering, sorting and verifying.
 #include <core/image.h>
+#include <core/memory_budget.h>
 #include <io/read_mesh.h>
 #include <io/write_image.h>
 #include <mesh/tetrahedralize.h>
@@ -296,6 +297,14 @@ PYBIND11_MODULE(_core, m) {
             },
             "what the split did (mesh/tetrahedralize.h TetrahedralizeReport)");
 
+    m.def(
+        "set_max_memory", [](std::uint64_t bytes) { tr::set_memory_budget(bytes); },
+        py::arg("bytes"), "core/memory_budget.h set_memory_budget (0: the default)");
+    m.def(
+        "parse_byte_size",
+        [](const std::string& text) { return unwrap(tr::parse_byte_size(text)); }, py::arg("text"),
+        "core/memory_budget.h parse_byte_size");
+    m.def("max_memory", &tr::memory_budget, "core/memory_budget.h memory_budget");
     m.def("mesh_from_arrays", &mesh_from_arrays, py::arg("points"), py::arg("connectivity"),
           py::arg("offsets"), py::arg("types"), py::arg("point_data"), py::arg("cell_data"),
           "Copies numpy arrays into a library mesh (sizes checked; the rest by tetrahedralize).");

@@ -120,6 +120,23 @@ def test_quick_log_scale_is_the_clis_with_its_legend(ring, cli, output_dir):
     assert np.abs(tetrender.render(linear, dtype=np.float32, legend=True) - picture).max() > 0.1
 
 
+def test_max_memory_refuses_what_would_need_more(ring):
+    scene = scene_dict(ring_mesh(ring), 640, 480)
+    try:
+        tetrender.set_max_memory("1M")
+        assert tetrender.max_memory() == 1 << 20
+        # 640 x 480 x 16 bytes: 4.7 MB, refused before any work.
+        with pytest.raises(tetrender.Error, match=r"a 640x480 picture would take about 4\.7 MB"):
+            tetrender.render(scene)
+        tetrender.set_max_memory(64 << 20)
+        assert tetrender.render(scene).shape == (480, 640, 3)
+        with pytest.raises(tetrender.Error, match="like 8G or 512M"):
+            tetrender.set_max_memory("12Q")
+    finally:
+        tetrender.set_max_memory(None)
+    assert tetrender.max_memory() > 1 << 20
+
+
 def test_scene_errors_carry_the_library_message(ring):
     scene = scene_dict(ring_mesh(ring))
     scene["scalar"] = "pressure"

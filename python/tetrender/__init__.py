@@ -13,6 +13,7 @@ The library's entry points with numpy arrays in and out (docs/python.md):
 - ``sort(scene, ...)`` -> a visibility order, ``verify_order(scene, order)`` -> its check
 - ``flow_volume(scene, vectors, seed_center, seed_size, ...)`` -> the dye's picture and tets
 - ``write_image(path, image)`` / ``read_image(path)``: PNG and PFM, as the CLI writes them
+- ``set_max_memory("8G")`` / ``max_memory()``: the CLI's ``--max-memory``
 
 Errors raise :class:`Error` (a ``RuntimeError``) with the library's one-line message.
 The GIL is released while reading, tetrahedralizing, rendering, sorting and verifying.
@@ -45,6 +46,8 @@ __all__ = [
     "flow_volume",
     "write_image",
     "read_image",
+    "set_max_memory",
+    "max_memory",
     "CELL_TYPES",
 ]
 
@@ -334,6 +337,28 @@ class Mesh:
         """Counts and array names."""
         return (f"tetrender.Mesh({self.num_points} points, {self.num_cells} cells, "
                 f"point_data={list(self.point_data)}, cell_data={list(self.cell_data)})")
+
+
+def set_max_memory(size: int | str | None) -> None:
+    """The most memory the library may take (the CLI's ``--max-memory``): bytes, or a size
+    like ``"8G"`` or ``"512M"``; ``None`` or 0 restores the default (80% of the machine's).
+
+    A mesh whose tetrahedralization or a picture whose buffers would need more raise
+    :class:`Error` saying what they would take, before any work.
+    """
+    if size is None:
+        _core.set_max_memory(0)
+    elif isinstance(size, str):
+        _core.set_max_memory(_core.parse_byte_size(size))
+    else:
+        if int(size) < 0:
+            raise Error(f"set_max_memory takes a size >= 0, not {size}")
+        _core.set_max_memory(int(size))
+
+
+def max_memory() -> int:
+    """The memory budget in bytes (set_max_memory's, else 80% of the machine's memory)."""
+    return int(_core.max_memory())
 
 
 def read(path: str | os.PathLike, time_step: int | None = None) -> Mesh:
