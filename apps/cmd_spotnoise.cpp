@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <flowtex/spot_noise_frames.h>
 #include <memory>
+#include <optional>
 #include <pipeline/flow_volume_scene.h>
 #include <pipeline/movie.h>
 #include <pipeline/pipeline.h>
@@ -33,6 +34,8 @@ struct SpotNoiseArgs {
     std::string size = "512x512";
     std::vector<std::string> surfaces;
     int time_step = 0;
+    bool unsteady = false;
+    std::optional<double> start_time;
 };
 
 int run_spotnoise(const SpotNoiseArgs& args) {
@@ -48,6 +51,10 @@ int run_spotnoise(const SpotNoiseArgs& args) {
     options.spots.band = args.band;
     options.spots.lifetime_frames = args.lifetime;
     options.steps = args.steps;
+    if (args.start_time) {
+        options.spots.start_time = *args.start_time;
+        options.start_time_set = true;
+    }
     std::vector<SurfaceMesh> surfaces;
     for (const std::string& path : args.surfaces) {
         auto surface = read_surface(path);
@@ -86,7 +93,7 @@ int run_spotnoise(const SpotNoiseArgs& args) {
     volume.time_step = args.time_step;
     auto domain = pipeline.flow_domain(volume);
     if (!domain.ok()) return report_error(domain.error());
-    auto velocity = load_velocity(*domain, args.vectors, false);
+    auto velocity = load_velocity(*domain, args.vectors, args.unsteady);
     if (!velocity.ok()) return report_error(velocity.error());
 
     const auto report = spot_noise_frames(domain->mesh(), *domain->adjacency, *velocity, options,
@@ -134,7 +141,8 @@ std::function<int()> add_spotnoise_command(CLI::App& app) {
         ->check(in_range(0, 100000));
     cmd->add_option("--dt", args->dt,
                     "Flow time per frame (default: the mean speed over the spots carries a spot "
-                    "1/400 of the mesh's diagonal per frame)")
+                    "1/400 of the mesh's diagonal per frame; unsteady, the file's time span over "
+                    "the steps)")
         ->check(kPositive);
     cmd->add_option("--band", args->band,
                     "Half-width of the band around the surface, world units (default: the "
@@ -146,8 +154,13 @@ std::function<int()> add_spotnoise_command(CLI::App& app) {
     cmd->add_option("--surface", args->surfaces,
                     "Opaque surface file(s) drawn under the spots, which are depth-tested "
                     "against them");
-    cmd->add_option("--time-step", args->time_step, "The time step to read (default 0)")
+    cmd->add_option("--time-step", args->time_step, "The time step to read (steady; default 0)")
         ->check(kNonNegativeInteger);
+    cmd->add_flag("--unsteady", args->unsteady,
+                  "Velocity linear in time over all the file's time steps (.pvd, Exodus); the "
+                  "default dt spans them over the steps");
+    cmd->add_option("--start-time", args->start_time,
+                    "Unsteady: the time of frame 0 (default: the first step's)");
     cmd->add_option("--size", args->size, "Image size WxH (default 512x512)");
     cmd->add_option("--movie", args->movie,
                     "Also encode the frames into out.mp4|webm|gif at 25 fps (needs ffmpeg)");

@@ -47,6 +47,11 @@ Result<SpotNoiseFramesReport> spot_noise_frames(
     if (spot_options.band == 0) spot_options.band = diagonal / 100.0;
     const bool auto_dt = spot_options.dt == 0;
     if (auto_dt) spot_options.dt = 1.0;
+    const bool unsteady = !velocity.is_steady();
+    if (!options.start_time_set) spot_options.start_time = unsteady ? velocity.first_time() : 0.0;
+    if (!std::isfinite(spot_options.start_time)) {
+        return make_error(ErrorCode::kInvalidArgument, "the start time must be finite");
+    }
     const MeshFlow flow(mesh, adjacency, velocity);
     TR_TRY(SpotNoise spots, SpotNoise::create(mesh, flow.locator(), *scalar, flow, spot_options));
 
@@ -57,9 +62,12 @@ Result<SpotNoiseFramesReport> spot_noise_frames(
     report.mean_speed = spots.mean_speed();
     double dt = spot_options.dt;
     int lifetime = spot_options.lifetime_frames;
-    if (!(report.mean_speed > 0) || !std::isfinite(report.mean_speed)) {
+    const double span = unsteady ? velocity.last_time() - spot_options.start_time : 0.0;
+    if (auto_dt && unsteady && options.steps > 0 && span > 0) {
+        dt = span / options.steps;  // the frames cover the series (still or not at frame 0)
+    } else if (!(report.mean_speed > 0) || !std::isfinite(report.mean_speed)) {
         dt = auto_dt ? 1.0 : dt;
-        lifetime = 0;  // nothing moves: still frames
+        if (!unsteady) lifetime = 0;  // nothing moves, ever: still frames
     } else if (auto_dt) {
         dt = diagonal / 400.0 / report.mean_speed;
     }

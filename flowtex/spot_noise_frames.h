@@ -22,8 +22,12 @@ namespace tr {
 struct SpotNoiseFramesOptions {
     std::string scalar;  // a 1-component point array of the mesh
     // iso, count, seed, lifetime as given; band 0: the mesh bounds' diagonal / 100; dt 0: the
-    // mean speed over the spots at frame 0 carries a spot 1/400 of the diagonal per frame.
+    // mean speed over the spots at frame 0 carries a spot 1/400 of the diagonal per frame, or,
+    // for an unsteady velocity, the frames span its times from the start to the last sample.
+    // spots.start_time is used when start_time_set; else 0 for a steady velocity and the first
+    // sample's time for an unsteady one.
     SpotNoiseOptions spots;
+    bool start_time_set = false;
     int steps = 100;  // frames after frame 0
     int width = 512, height = 512;
     // Default: a perspective view (30 degrees) from (1, -1.2, 0.8) framing the spots of frame 0.

@@ -18,10 +18,10 @@ using testing::make_temp_dir;
 using testing::run_cli;
 using testing::shell_quote;
 
-// A legacy ASCII grid of 4 x 4 x 4 hexahedra over [0, 4]^3 with a point scalar `s` and point
-// vectors `v`: zero, or a rotation about the axis x = y = 2.
+// A legacy ASCII grid of 4 x 4 x 4 hexahedra over [0, 4]^3 with a point scalar `s` (1, or x
+// with `s_is_x`) and point vectors `v`: zero, or a rotation about the axis x = y = 2.
 std::string grid_file(const std::string& dir, bool rotating, int scale = 1,
-                      const std::string& name = "") {
+                      const std::string& name = "", bool s_is_x = false) {
     const int n = 5;
     std::string s = "# vtk DataFile Version 4.2\nadvect test\nASCII\nDATASET UNSTRUCTURED_GRID\n";
     s += "POINTS " + std::to_string(n * n * n) + " double\n";
@@ -41,7 +41,7 @@ std::string grid_file(const std::string& dir, bool rotating, int scale = 1,
     s += "CELL_TYPES " + std::to_string(cells) + "\n";
     for (int c = 0; c < cells; ++c) s += "12\n";
     s += "POINT_DATA " + std::to_string(n * n * n) + "\nSCALARS s float 1\nLOOKUP_TABLE default\n";
-    for (int p = 0; p < n * n * n; ++p) s += "1\n";
+    for (int p = 0; p < n * n * n; ++p) s += s_is_x ? std::to_string(p % n) + "\n" : "1\n";
     s += "VECTORS v float\n";
     for (int k = 0; k < n; ++k)
         for (int j = 0; j < n; ++j)
@@ -178,6 +178,38 @@ TEST(CliAdvect, UnsteadySeriesBothMethods) {
         EXPECT_EQ(count_files(frames), 5);
         EXPECT_TRUE(bytes(frames + "/frame_0000.png") != bytes(frames + "/frame_0004.png"));
     }
+}
+
+TEST(CliSpotNoise, UnsteadySeries) {
+    // The rotation doubling its speed from t = 0 to t = 1; spots around the plane x = 2.
+    const std::string dir = make_temp_dir();
+    grid_file(dir, true, 1, "s0.vtk", true);
+    grid_file(dir, true, 2, "s1.vtk", true);
+    std::ofstream(dir + "/flow.pvd")
+        << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+           "<Collection>\n<DataSet timestep=\"0\" part=\"0\" file=\"s0.vtk\"/>\n"
+           "<DataSet timestep=\"1\" part=\"0\" file=\"s1.vtk\"/>\n</Collection>\n</VTKFile>\n";
+    const std::string spots = "spotnoise " + shell_quote(dir + "/flow.pvd") +
+                              " --scalar s --iso 2 --vectors v --steps 4 --count 400 --size "
+                              "32x32 --frames ";
+    auto run = run_cli(spots + shell_quote(dir + "/unsteady") + " --unsteady");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    // The default dt spans the series: (1 - 0) / 4.
+    EXPECT_NE(run.out.find("dt 0.25"), std::string::npos) << run.out;
+    EXPECT_EQ(count_files(dir + "/unsteady"), 5);
+    EXPECT_NE(bytes(dir + "/unsteady/frame_0000.png"), bytes(dir + "/unsteady/frame_0004.png"));
+    // Starting later: another run of frames.
+    run = run_cli(spots + shell_quote(dir + "/later") + " --unsteady --start-time 0.5 --dt 0.1");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(bytes(dir + "/later/frame_0004.png"), bytes(dir + "/unsteady/frame_0004.png"));
+    // One step is no series.
+    run =
+        run_cli("spotnoise " + shell_quote(grid_file(dir, true, 1, "one.vtk", true)) +
+                " --scalar s --iso 2 --vectors v --unsteady --frames " + shell_quote(dir + "/one"));
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_NE(run.err.find("this mesh has 1 time step"), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_EQ(count_files(dir + "/one"), 0);
 }
 
 TEST(CliAdvectBadInput, OneLineErrorsAndNoFrames) {
