@@ -719,13 +719,17 @@ ShadedSegment SegmentShader::exact(double s_front, double s_back, double length)
         const double s0 = s_front + (s_back - s_front) * u0;
         const double s1 = s_front + (s_back - s_front) * u1;
         const double k_max = std::max(tf_.extinction(s0), tf_.extinction(s1));
-        // (Clamped before the conversion: a long, thick piece would overflow an int.)
-        const int steps = static_cast<int>(
-            std::clamp(std::ceil(k_max * piece_length / kMaxDepthStep), 4.0, double{kMaxSteps}));
+        // (Clamped before the conversion: a long, thick piece would overflow an int. A clear
+        // piece of infinite length, 0 * inf, is NaN: 4 steps.)
+        const double wanted = std::ceil(k_max * piece_length / kMaxDepthStep);
+        const int steps =
+            static_cast<int>(std::isnan(wanted) ? 4.0 : std::clamp(wanted, 4.0, double{kMaxSteps}));
         const double h = piece_length / steps;
         for (int i = 0; i < steps; ++i) {
             const double s = s0 + (s1 - s0) * (i + 0.5) / steps;  // midpoint
-            const double alpha = -std::expm1(-tf_.extinction(s) * h);
+            // Zero extinction over an infinite step absorbs nothing (0 * inf would be NaN).
+            const double depth = tf_.extinction(s) * h;
+            const double alpha = depth > 0 ? -std::expm1(-depth) : 0.0;
             color += transparency * alpha * tf_.color(s);
             transparency *= 1.0 - alpha;
             if (transparency < kOpaque) break;

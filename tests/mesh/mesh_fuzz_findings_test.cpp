@@ -154,5 +154,23 @@ TEST(MeshFuzzFindings, SegmentLongerThanAFloat) {
     }
 }
 
+TEST(MeshFuzzFindings, ClearSegmentOfInfiniteLength) {
+    // fuzz_mesh_pipeline, eighth run: the exact integrator's step count was ceil(0 * inf) = NaN
+    // for a clear (zero-extinction) piece of infinite length, cast to int (UBSan), and each
+    // step's opacity 1 - exp(-0 * inf) NaN. A clear piece now absorbs nothing, however long.
+    auto clear = TransferFunction::create({{0, Vec3(1, 0.5, 0)}, {1, Vec3(0, 0.5, 1)}},
+                                          {{0, 0.0}, {0.5, 0.0}, {1, 0.3}}, 1.0);
+    ASSERT_TRUE(clear.ok());
+    const SegmentShader shader(clear.value(), Integrator::kExact, 1.0);
+    const double inf = std::numeric_limits<double>::infinity();
+    ShadedSegment seg = shader.shade(0.0, 0.25, inf);
+    EXPECT_EQ(seg.alpha, 0.0f);
+    EXPECT_EQ(seg.color, Vec3f(0.0f));
+    // Clear in front, then absorbing: opaque, the colour where the extinction starts.
+    seg = shader.shade(0.0, 1.0, inf);
+    EXPECT_TRUE(std::isfinite(seg.alpha) && seg.alpha > 0.99f) << seg.alpha;
+    for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isfinite(seg.color[k])) << seg.color[k];
+}
+
 }  // namespace
 }  // namespace tr
