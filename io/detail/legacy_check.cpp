@@ -321,7 +321,12 @@ class LegacyBody {
         std::string line;
         in_.line(line);
         while (in_.line(line)) {
-            if (line.empty()) break;
+            // VTK stops at strlen(line) == 0: an empty line, or one that starts with a NUL byte
+            // (fuzz_legacy_vtk, sixth run: a binary line ended VTK's block there, and its scan
+            // read a FIELD from the lines after, which ours had skipped). A line longer than
+            // VTK's 255-byte buffer ends ours too (VTK reads on, or fails: either way ours reads
+            // no fewer words than VTK after it).
+            if (line.empty() || line[0] == '\0' || line.size() > 255) break;
             if (starts_with(lower(line), "component_names")) {
                 for (std::uint64_t c = 0; c < components; ++c) {
                     // VTK goes on reading (and failing) for every name it lacks.

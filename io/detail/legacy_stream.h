@@ -91,6 +91,13 @@ inline const char* const kKeywords[] = {
 // "CELLSX" is CELLS), in capitals; "" when it is none.
 inline std::string keyword_of(const std::string& word) {
     const std::string w = lower(word);
+    // vtkRectilinearGridReader compares 12 characters, "x_coordinate": X_COORDINATEQ is X
+    // coordinates (fuzz_legacy_vtk, sixth run).
+    for (const char* axis : {"x", "y", "z"}) {
+        if (starts_with(w, (std::string(axis) + "_coordinate").c_str())) {
+            return upper(std::string(axis) + "_coordinates");
+        }
+    }
     for (const char* k : kKeywords) {
         if (starts_with(w, k)) return upper(k);
     }

@@ -332,6 +332,21 @@ UnstructuredMesh convert_data_object(vtkDataObject* object, const std::string& w
     if (auto* rg = vtkRectilinearGrid::SafeDownCast(object)) {
         int dims[3];
         rg->GetDimensions(dims);
+        // VTK only warns about a missing or short coordinate array, and its GetPoint then reads
+        // a null or past the array (fuzz_legacy_vtk, sixth run: X_COORDINATES twice and no Z,
+        // a SEGV in vtkRectilinearGrid::GetPoint).
+        vtkDataArray* coordinates[3] = {rg->GetXCoordinates(), rg->GetYCoordinates(),
+                                        rg->GetZCoordinates()};
+        for (int a = 0; a < 3; ++a) {
+            const vtkIdType n = coordinates[a] ? coordinates[a]->GetNumberOfTuples() : 0;
+            if (dims[a] > 0 && n != dims[a]) {
+                fail(ErrorCode::kParse,
+                     std::string("rectilinear grid: ") + "XYZ"[a] + " coordinates hold " +
+                         std::to_string(n) + " values for a dimension of " +
+                         std::to_string(dims[a]),
+                     where);
+            }
+        }
         return from_structured(rg, dims, where);
     }
     if (auto* image = vtkImageData::SafeDownCast(object)) {

@@ -493,5 +493,72 @@ TEST(IoFuzzFindings, BlanksAfterAnArrayAreAnError) {
     }
 }
 
+// fuzz_legacy_vtk, sixth run, in its first minute: a RECTILINEAR_GRID with "X_COORDINATEQ 2
+// float", Y_COORDINATES, X_COORDINATES again and no Z: VTK's reader takes any word starting with
+// "x_coordinate" (12 characters) as X coordinates, only warns about the missing Z, and
+// vtkRectilinearGrid::GetPoint then read a null array (SIGSEGV in the conversion, exit 139 from
+// `tetrender info`, measured). The walk now knows VTK's 12-character keyword, and a rectilinear
+// grid whose coordinate arrays do not match its dimensions (legacy or .vtr) is an error:
+// "rectilinear grid: Z coordinates hold 0 values for a dimension of 2". Before, a short array
+// was read past its end (short.vtk: garbage points, "the mesh overlaps itself") and a long one
+// read with its extra values ignored (long.vtk, exit 0), both measured.
+TEST(IoFuzzFindings, RectilinearCoordinatesMustMatchTheDimensions) {
+    TempDir dir;
+    const std::string head = "# vtk DataFile Version 4.2\nt\nASCII\nDATASET RECTILINEAR_GRID\n";
+    const struct {
+        std::string name;
+        std::string body;
+        std::string message_part;
+    } cases[] = {
+        {"found.vtk",
+         "DIMENSIONS 2 2 2\nX_COORDINATEQ 2 float\n0 1\nY_COORDINATES 2 float\n0 1\n"
+         "X_COORDINATES 2 float\n0 1\n",
+         "rectilinear grid: Z coordinates hold 0 values for a dimension of 2"},
+        {"short.vtk",
+         "DIMENSIONS 3 2 2\nX_COORDINATES 2 float\n0 1\nY_COORDINATES 2 float\n0 1\n"
+         "Z_COORDINATES 2 float\n0 1\n",
+         "rectilinear grid: X coordinates hold 2 values for a dimension of 3"},
+        {"long.vtk",
+         "DIMENSIONS 2 2 2\nX_COORDINATES 2 float\n0 1\nY_COORDINATES 3 float\n0 1 2\n"
+         "Z_COORDINATES 2 float\n0 1\n",
+         "rectilinear grid: Y coordinates hold 3 values for a dimension of 2"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        const auto path = dir / c.name;
+        write_file(path, head + c.body);
+        const std::string message = expect_error(read_mesh(path), path);
+        EXPECT_NE(message.find(c.message_part), std::string::npos) << message;
+    }
+    // "X_COORDINATESXYZ" and the like are X coordinates to VTK: such a grid reads.
+    const auto path = dir / "prefix.vtk";
+    write_file(path, head +
+                         "DIMENSIONS 2 2 2\nX_COORDINATEQ 2 float\n0 1\nY_COORDINATEZZ 2 float\n0 "
+                         "1\nZ_COORDINATES 2 float\n0 1\n");
+    auto ok = read_mesh(path);
+    ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+    EXPECT_EQ(ok.value().points.size(), 8u);
+    EXPECT_NEAR(test::total_abs_volume(ok.value()), 1.0, 1e-12);
+}
+
+// fuzz_legacy_vtk, sixth run: an array METADATA block ends, for VTK, at a line whose strlen is
+// 0 -- empty, or starting with a NUL byte (a binary line). The pre-check read on to the next
+// empty line, skipping what VTK's structured grid scan reads next: a "fieldvel ..." line there
+// became a FIELD of unknown type and a segfault (exit 139 from `tetrender info`, and from
+// vtkDataSetReader alone, on this reduction of the fuzzer's file). Now "nul_meta.vtk:11: error:
+// FIELD array float: unknown data type '1'".
+TEST(IoFuzzFindings, MetadataBlockEndsAtALineStartingWithNul) {
+    TempDir dir;
+    const auto path = dir / "nul_meta.vtk";
+    write_file(path, std::string("# vtk DataFile Version 4.2\nt\nASCII\nDATASET STRUCTURED_GRID\n"
+                                 "FIELD fd 1\nlabels 1 1 string\none\nMETADATA\n") +
+                         std::string(1, '\0') +
+                         " a binary line\nfieldvel 3 12 float\n0 0 1 0 3 1\n\nDIMENSIONS 2 2 "
+                         "2\nPOINTS 8 float\n0 0 0 1 0 0 0 1 0 1 1 0 0 0 1 1 0 1 0 1 1 1 1 1\n");
+    const std::string message = expect_error(read_mesh(path), path);
+    EXPECT_NE(message.find("FIELD array float: unknown data type '1'"), std::string::npos)
+        << message;
+}
+
 }  // namespace
 }  // namespace tr
