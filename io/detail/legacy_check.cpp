@@ -167,7 +167,7 @@ class LegacyBody {
                 values(times(nc, tuples_), header_.binary ? "unsigned_char" : "float",
                        kw + " " + name, nc);
             } else if (kw == "LOOKUP_TABLE") {
-                const std::string name = name_word();
+                const std::string name = name_word(false);
                 const std::uint64_t n = count("the table size");
                 // ReadLutData reads the values itself, not through ReadArray.
                 values(times(4, n), header_.binary ? "unsigned_char" : "float", kw + " " + name, 4,
@@ -200,10 +200,28 @@ class LegacyBody {
         return static_cast<std::uint64_t>(v);
     }
 
-    std::string name_word() {
+    // A name; `decoded` when VTK passes it through DecodeString (array names: see decodable).
+    std::string name_word(bool decoded = true) {
         std::string w;
         if (!in_.word(w)) bad("a name");
+        if (decoded) decodable(w, keyword_ + " name");
         return w;
+    }
+
+    // vtkDataReader::DecodeString turns "%XX" into a byte. For a string shorter than 3 its
+    // bounds test (cc <= len - 3, unsigned) always passes: at a '%' it reads the 2 bytes after,
+    // skips past the end and copies what it read on into a buffer sized for the string
+    // (fuzz_legacy_vtk, eighth run: a string value "%2", ASan heap-buffer-overflow WRITE in
+    // DecodeString). Array names, FIELD array names, ASCII string and variant values and
+    // component names go through it.
+    void decodable(const std::string& s, const std::string& what) {
+        if (s.size() < 3 && s.find('%') != std::string::npos) {
+            fail(ErrorCode::kParse,
+                 what + " " + quote_word(s) +
+                     ": a '%' in a name or string of fewer than 3 characters (VTK 9.1 reads past "
+                     "its end decoding it)",
+                 at());
+        }
     }
 
     std::string type() {
@@ -336,6 +354,7 @@ class LegacyBody {
                                  std::to_string(components) + " names",
                              at());
                     }
+                    decodable(line, what + ": component name");
                 }
             }
         }
@@ -392,7 +411,7 @@ class LegacyBody {
             fail(ErrorCode::kParse,
                  "SCALARS " + name + ": expected LOOKUP_TABLE, found " + quote_word(w), at());
         }
-        name_word();  // the table's name
+        name_word(false);  // the table's name
         values(times(nc, tuples_), t, "SCALARS " + name);
     }
 
@@ -534,7 +553,7 @@ class LegacyBody {
     // dereference that null (segfaults found by fuzz_legacy_vtk); a count that is not a number
     // leaves VTK reading on with a failed stream and uninitialized values. All are errors here.
     void field() {
-        name_word();
+        name_word(false);
         // Read(int*): a negative count reads no array.
         std::int64_t arrays = 0;
         if (!in_.integer(arrays, 2147483648u)) bad("the array count");
@@ -542,6 +561,7 @@ class LegacyBody {
             std::string name;
             if (!in_.word(name)) bad("a FIELD array");
             if (name == "NULL_ARRAY") continue;
+            decodable(name, "FIELD array name");
             const std::uint64_t nc = count("the component count");
             const std::uint64_t nt = count("the tuple count");
             if (nc != 0 && nt > in_.left() / nc + 1) {
@@ -585,6 +605,7 @@ class LegacyBody {
             in_.line(line);
             for (std::uint64_t i = 0; i < n; ++i) {
                 if (!in_.line(line)) truncated(i);
+                decodable(line, what + ": string " + std::to_string(i + 1));
             }
             return;
         }
@@ -628,6 +649,7 @@ class LegacyBody {
                          " is not a type number and a word",
                      at());
             }
+            decodable(word, what + ": value " + std::to_string(i + 1));
         }
     }
 

@@ -560,5 +560,43 @@ TEST(IoFuzzFindings, MetadataBlockEndsAtALineStartingWithNul) {
         << message;
 }
 
+// fuzz_legacy_vtk, eighth run: a string value "%2" in a FIELD string array. VTK's DecodeString
+// (which turns "%XX" into a byte) checks cc <= len - 3 in unsigned arithmetic: for a string of
+// one or two characters holding a '%' it reads past the end and copies what it read into a
+// buffer sized for the string (ASan: heap-buffer-overflow WRITE in DecodeString; silent heap
+// corruption in a normal build). Array names, FIELD array names, ASCII string and variant
+// values and component names go through it: each of fewer than 3 characters with a '%' is an
+// error. "a%b" and "%41" read.
+TEST(IoFuzzFindings, ShortStringsWithAPercentAreAnError) {
+    TempDir dir;
+    const struct {
+        std::string name;
+        std::string tail;
+        std::string message_part;
+    } cases[] = {
+        {"value.vtk", "FIELD fd 1\nlabels 1 2 string\nfirst\n%2\n",
+         "FIELD array labels: string 2 '%2': a '%' in a name or string of fewer than 3 "
+         "characters"},
+        {"scalar.vtk", "POINT_DATA 8\nSCALARS % float 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 7\n",
+         "SCALARS name '%'"},
+        {"field_name.vtk", "FIELD fd 1\na% 1 1 float\n0\n", "FIELD array name 'a%'"},
+        {"variant.vtk", "FIELD fd 1\nv 1 1 variant\n6 %\n", "FIELD array v: value 1 '%'"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        const auto path = dir / c.name;
+        write_file(path, structured_grid(c.tail));
+        const std::string message = expect_error(read_mesh(path), path);
+        EXPECT_NE(message.find(c.message_part), std::string::npos) << message;
+    }
+    const auto path = dir / "fine.vtk";
+    write_file(path, structured_grid("FIELD fd 1\nlabels 1 2 string\na%b\n%41\nPOINT_DATA 8\n"
+                                     "SCALARS a%b float 1\nLOOKUP_TABLE default\n0 1 2 3 4 5 6 "
+                                     "7\n"));
+    auto ok = read_mesh(path);
+    ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+    EXPECT_EQ(ok.value().points.size(), 8u);
+}
+
 }  // namespace
 }  // namespace tr
