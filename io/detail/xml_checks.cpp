@@ -127,7 +127,7 @@ class ArrayBytes {
 // Where the pieces and their Cells sections start in the file, up to <AppendedData> (the XML
 // of a file with inline arrays runs through the whole file: one streaming pass).
 struct XmlLandmarks {
-    std::vector<std::uintmax_t> pieces, cells;
+    std::vector<std::uintmax_t> pieces, cells, arrays;
     std::uintmax_t appended = std::numeric_limits<std::uintmax_t>::max();
 };
 
@@ -148,7 +148,8 @@ XmlLandmarks find_landmarks(const fs::path& path) {
             stop = window_start + a;
         }
         for (auto [needle, list] : {std::pair{std::string("<Piece"), &marks.pieces},
-                                    std::pair{std::string("<Cells"), &marks.cells}}) {
+                                    std::pair{std::string("<Cells"), &marks.cells},
+                                    std::pair{std::string("<DataArray"), &marks.arrays}}) {
             const std::size_t from = old >= needle.size() ? old - needle.size() + 1 : 0;
             for (std::size_t p = window.find(needle, from); p != std::string::npos;
                  p = window.find(needle, p + 1)) {
@@ -196,6 +197,93 @@ std::uintmax_t find_in_file(const fs::path& path, const std::string& needle, std
 std::string tag_at(const fs::path& path, std::uintmax_t pos, std::uintmax_t size) {
     if (pos >= size) return {};
     return read_at(path, pos, std::min<std::uintmax_t>(4096, size - pos), size).value_or("");
+}
+
+// Where the bytes of the binary DataArray whose tag (`tag`, at `tag_pos`) they follow start,
+// and whether they are base64: inline (format="binary") or appended (raw or base64); nothing
+// for ASCII and what cannot be located.
+std::optional<std::pair<std::uintmax_t, bool>> array_start(
+    const fs::path& path, std::uintmax_t size, const std::string& tag, std::uintmax_t tag_pos,
+    const XmlLandmarks& marks, const std::string& appended_tag) {
+    const std::string format = xml_attribute(tag, 0, "format");
+    const std::size_t tag_end = tag.find('>');
+    if (tag_end == std::string::npos || tag_end == 0) return std::nullopt;
+    const bool empty_element = tag[tag_end - 1] == '/';
+    if (format == "binary" && !empty_element) {
+        const std::uintmax_t after = tag_pos + tag_end + 1;
+        if (after >= size) return std::nullopt;
+        const std::string content =
+            read_at(path, after, std::min<std::uintmax_t>(4096, size - after), size).value_or("");
+        std::size_t skip = 0;
+        while (skip < content.size() && std::isspace(static_cast<unsigned char>(content[skip])))
+            ++skip;
+        return std::pair{after + skip, true};
+    }
+    if (format == "appended" && !appended_tag.empty()) {
+        const std::string encoding = xml_attribute(appended_tag, 0, "encoding");
+        if (encoding != "raw" && encoding != "base64") return std::nullopt;
+        const std::size_t underscore = appended_tag.find('_', appended_tag.find('>'));
+        if (underscore == std::string::npos) return std::nullopt;
+        return std::pair{marks.appended + underscore + 1 +
+                             std::strtoull(xml_attribute(tag, 0, "offset").c_str(), nullptr, 10),
+                         encoding == "base64"};
+    }
+    return std::nullopt;
+}
+
+// A compressed file's block headers (every compressor's: blocks, block size, last block size,
+// compressed size of each block): VTK's XML reader sizes vectors and buffers from them before
+// reading any data (fuzz_vtu, this session's first run: a block count of 2^57 + 1 asked
+// operator new for 2^60 bytes; std::bad_alloc in a normal build). The compressed sizes are
+// stored in the file, and so are the blocks: their counts and sizes must fit it; a block
+// inflates at most to `limit` (10000 bytes per byte of file + 10^6).
+void check_compression_headers(const fs::path& path, const std::string& head,
+                               const XmlLandmarks& marks, std::uintmax_t size, double limit) {
+    const std::size_t root = head.find("<VTKFile");
+    if (xml_attribute(head, root, "compressor").empty()) return;
+    const bool big_endian = xml_attribute(head, root, "byte_order") == "BigEndian";
+    const std::size_t hs = xml_attribute(head, root, "header_type") == "UInt64" ? 8 : 4;
+    const auto word = [&](const std::string& bytes, std::size_t i) {
+        std::uint64_t v = 0;
+        for (std::size_t b = 0; b < hs; ++b) {
+            const std::size_t k = big_endian ? b : hs - 1 - b;
+            v = (v << 8) | static_cast<unsigned char>(bytes[i * hs + k]);
+        }
+        return v;
+    };
+    const std::string appended_tag = marks.appended == std::numeric_limits<std::uintmax_t>::max()
+                                         ? std::string()
+                                         : tag_at(path, marks.appended, size);
+    for (const std::uintmax_t tag_pos : marks.arrays) {
+        const std::string tag = tag_at(path, tag_pos, size);
+        const auto located = array_start(path, size, tag, tag_pos, marks, appended_tag);
+        if (!located) continue;
+        const ArrayBytes bytes(path, size, located->first, located->second);
+        const auto h = bytes.get(0, 3 * hs, 0, 3 * hs);
+        if (!h) continue;  // past the end: VTK says so
+        const std::uint64_t blocks = word(*h, 0), block_size = word(*h, 1), last = word(*h, 2);
+        const std::string name = "DataArray '" + xml_attribute(tag, 0, "Name") + "'";
+        const auto implausible = [&](const std::string& what) {
+            fail(ErrorCode::kParse,
+                 name + ": a compression header of " + what + " is not plausible for a file of " +
+                     std::to_string(size) + " bytes",
+                 path.string());
+        };
+        if (blocks > size / hs) implausible(std::to_string(blocks) + " blocks");
+        if (static_cast<double>(block_size) > limit || last > block_size) {
+            implausible("blocks of " + std::to_string(block_size) + " bytes (the last " +
+                        std::to_string(last) + ")");
+        }
+        const auto sizes = bytes.get(0, (3 + blocks) * hs, 3 * hs, blocks * hs);
+        if (!sizes) continue;
+        for (std::uint64_t j = 0; j < blocks; ++j) {
+            if (word(*sizes, static_cast<std::size_t>(j)) > size) {
+                implausible("a block of " +
+                            std::to_string(word(*sizes, static_cast<std::size_t>(j))) +
+                            " compressed bytes");
+            }
+        }
+    }
 }
 
 // The value of each piece's Cells "offsets" array that VTK's XML reader allocates the
@@ -274,31 +362,9 @@ void check_cell_offsets(const fs::path& path, const std::string& head, const Xml
             continue;
         }
         if (type_size == 0) continue;
-        // Where the array's bytes start.
-        std::uintmax_t start = 0;
-        bool base64 = true;
-        if (format == "binary" && !empty_element) {
-            const std::string content =
-                read_at(path, tag_pos + tag_end + 1,
-                        std::min<std::uintmax_t>(4096, size - (tag_pos + tag_end + 1)), size)
-                    .value_or("");
-            std::size_t skip = 0;
-            while (skip < content.size() && std::isspace(static_cast<unsigned char>(content[skip])))
-                ++skip;
-            start = tag_pos + tag_end + 1 + skip;
-        } else if (format == "appended") {
-            if (appended_tag.empty()) continue;
-            const std::string encoding = xml_attribute(appended_tag, 0, "encoding");
-            if (encoding != "raw" && encoding != "base64") continue;
-            base64 = encoding == "base64";
-            const std::size_t underscore = appended_tag.find('_', appended_tag.find('>'));
-            if (underscore == std::string::npos) continue;
-            start = marks.appended + underscore + 1 +
-                    std::strtoull(xml_attribute(tag, 0, "offset").c_str(), nullptr, 10);
-        } else {
-            continue;
-        }
-        const ArrayBytes bytes(path, size, start, base64);
+        const auto located = array_start(path, size, tag, tag_pos, marks, appended_tag);
+        if (!located) continue;
+        const ArrayBytes bytes(path, size, located->first, located->second);
         // The array's size in bytes, and a reader of its bytes [at, at + n).
         std::uint64_t total = 0;
         std::function<std::optional<std::string>(std::uint64_t, std::uint64_t)> data;
@@ -486,6 +552,7 @@ void check_vtk_xml(const fs::path& path, const std::string& type, const std::str
              "fixed corners (tets, hexahedra, wedges, pyramids, ...)",
              where);
     }
+    check_compression_headers(path, piece_head, marks, size, limit);
     if (type == "UnstructuredGrid") check_cell_offsets(path, piece_head, marks, size, limit);
     for (const std::string& tag : piece_tags) {
         for (const char* attr : {"NumberOfPoints", "NumberOfCells", "NumberOfVerts",

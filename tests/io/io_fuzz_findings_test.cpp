@@ -89,10 +89,12 @@ TEST(IoFuzzFindings, HugeCellOffsetIsAnError) {
 
 // How a binary VTK XML array is stored.
 struct Storage {
-    bool inline_base64 = false;    // format="binary" (else appended)
-    bool appended_base64 = false;  // <AppendedData encoding="base64"> (else raw)
-    bool uint64_header = false;    // header_type="UInt64"
-    bool zlib = false;             // compressor="vtkZLibDataCompressor", one block per array
+    bool inline_base64 = false;        // format="binary" (else appended)
+    bool appended_base64 = false;      // <AppendedData encoding="base64"> (else raw)
+    bool uint64_header = false;        // header_type="UInt64"
+    bool zlib = false;                 // compressor="vtkZLibDataCompressor", one block per array
+    std::uint64_t offsets_blocks = 1;  // the block count the offsets array's header says
+    std::uint64_t offsets_block_size = 0;  // its block size (0: the array's size)
 };
 
 std::string base64(const std::string& bytes) {
@@ -122,7 +124,7 @@ std::string stored_tet(std::int64_t last_offset, const Storage& storage, int ext
         return storage.uint64_header ? std::string(reinterpret_cast<const char*>(&v), 8)
                                      : std::string(reinterpret_cast<const char*>(&v), 4);
     };
-    const auto encode = [&](const void* values, std::size_t n) {
+    const auto encode = [&](const void* values, std::size_t n, bool offsets = false) {
         const std::string raw(static_cast<const char*>(values), n);
         std::string header, data = raw;
         if (storage.zlib) {
@@ -132,7 +134,10 @@ std::string stored_tet(std::int64_t last_offset, const Storage& storage, int ext
                                static_cast<uLong>(n)),
                       Z_OK);
             data.assign(reinterpret_cast<const char*>(z.data()), z_size);
-            header = word(1) + word(n) + word(n) + word(z_size);
+            const std::uint64_t block =
+                offsets && storage.offsets_block_size != 0 ? storage.offsets_block_size : n;
+            header =
+                word(offsets ? storage.offsets_blocks : 1) + word(block) + word(n) + word(z_size);
         } else {
             header = word(n);
         }
@@ -160,7 +165,7 @@ std::string stored_tet(std::int64_t last_offset, const Storage& storage, int ext
     const std::string arrays =
         "<Points>" + array("Float32", "Points", 3, encode(points.data(), 4 * points.size())) +
         "</Points>\n<Cells>" + array("Int64", "connectivity", 1, encode(conn, sizeof conn)) +
-        array("Int64", "offsets", 1, encode(offs, sizeof offs)) +
+        array("Int64", "offsets", 1, encode(offs, sizeof offs, true)) +
         array("UInt8", "types", 1, encode(types, sizeof types)) + "</Cells>";
     const auto piece = [&](const std::string& cells) {
         return "<Piece NumberOfPoints=\"" + std::to_string(4 + extra_points) +
@@ -240,6 +245,36 @@ TEST(IoFuzzFindings, HugeCellOffsetInBase64OrCompressedArrayIsAnError) {
         write_file(second, stored_tet(4, s, 6000, "100000000000000000000"));
         message = expect_error(read_mesh(second), second);
         EXPECT_NE(message.find("NumberOfCells=\"100000000000000000000\" is not plausible"),
+                  std::string::npos)
+            << message;
+    }
+}
+
+// fuzz_vtu, this session's first run (200 executions): the compression header of an offsets
+// array said 2^57 + 1 blocks; VTK's XML reader sized a vector of that many block sizes before
+// reading anything (ASan: operator new of 2^60 bytes; "out of memory while reading" from
+// `tetrender info`, measured). Every compressed array's header must now fit the file: at most
+// one block size per header word of the file, blocks of at most 10000 bytes per byte of file,
+// the last no longer than the others, each compressed block within the file.
+TEST(IoFuzzFindings, CompressionHeaderMustFitTheFile) {
+    TempDir dir;
+    for (const bool inline_base64 : {true, false}) {
+        SCOPED_TRACE(inline_base64);
+        Storage s{inline_base64, false, true, true};
+        s.offsets_blocks = (std::uint64_t{1} << 57) + 1;
+        const auto path = dir / "blocks.vtu";
+        write_file(path, stored_tet(4, s));
+        std::string message = expect_error(read_mesh(path), path);
+        EXPECT_NE(message.find("DataArray 'offsets': a compression header of 144115188075855873 "
+                               "blocks is not plausible"),
+                  std::string::npos)
+            << message;
+        s.offsets_blocks = 1;
+        s.offsets_block_size = std::uint64_t{1} << 60;
+        write_file(path, stored_tet(4, s));
+        message = expect_error(read_mesh(path), path);
+        EXPECT_NE(message.find("DataArray 'offsets': a compression header of blocks of "
+                               "1152921504606846976 bytes"),
                   std::string::npos)
             << message;
     }
