@@ -5,6 +5,7 @@
 #include <io/detail/readers.h>
 
 #include <array>
+#include <cctype>
 #include <cstring>
 #include <optional>
 #include <sstream>
@@ -358,7 +359,14 @@ struct PlyProperty {
     int count_size = 0;  // list count type size
     bool count_signed = false;
     int size = 0;  // scalar or list item size
+    bool item_signed = false;
+    bool item_integer = false;
 };
+
+bool ply_type_signed(const std::string& type) {
+    return type == "char" || type == "int8" || type == "short" || type == "int16" ||
+           type == "int" || type == "int32";
+}
 
 struct PlyElement {
     std::string name;
@@ -374,7 +382,21 @@ void check_ply(const fs::path& path) {
     if (bytes.rfind("ply", 0) != 0 || bytes.size() < 4 || (bytes[3] != '\n' && bytes[3] != '\r')) {
         fail(ErrorCode::kParse, "not a PLY file: it does not start with 'ply'", where);
     }
-    const std::size_t end = bytes.find("end_header");
+    // The header ends at the first line whose first word is end_header, as VTK reads it
+    // ("end_headerx" is not the end: VTK would read on into the body as header lines).
+    std::size_t end = std::string::npos;
+    for (std::size_t at = 0; at < bytes.size();) {
+        const std::size_t first = bytes.find_first_not_of(" \t", at);
+        if (first != std::string::npos && bytes.compare(first, 10, "end_header") == 0 &&
+            (first + 10 == bytes.size() ||
+             std::isspace(static_cast<unsigned char>(bytes[first + 10])))) {
+            end = first;
+            break;
+        }
+        const std::size_t nl = bytes.find('\n', at);
+        if (nl == std::string::npos) break;
+        at = nl + 1;
+    }
     if (end == std::string::npos) fail(ErrorCode::kParse, "not a PLY file: no 'end_header'", where);
     std::size_t body = bytes.find('\n', end);
     if (body == std::string::npos)
@@ -395,11 +417,18 @@ void check_ply(const fs::path& path) {
         } else if (key == "element") {
             PlyElement e;
             long long count = -1;
-            words >> e.name >> count;
-            if (count < 0 || static_cast<std::uint64_t>(count) > bytes.size()) {
+            // A count that is not a number reads as 0 (C++11 extraction): refused.
+            if (!(words >> e.name >> count) || count < 0 ||
+                static_cast<std::uint64_t>(count) > bytes.size()) {
                 fail(ErrorCode::kParse, "bad element count in '" + line + "'", at);
             }
             e.count = static_cast<std::uint64_t>(count);
+            // Two elements of one name: VTK's reader frees the first's storage twice
+            // (AddressSanitizer: double-free in vtkPLYReader::RequestData).
+            for (const PlyElement& other : elements) {
+                if (other.name == e.name)
+                    fail(ErrorCode::kParse, "PLY element '" + e.name + "' declared twice", at);
+            }
             elements.push_back(std::move(e));
         } else if (key == "property") {
             if (elements.empty()) fail(ErrorCode::kParse, "property before any element", at);
@@ -415,6 +444,9 @@ void check_ply(const fs::path& path) {
                                  count_type == "short" || count_type == "int16" ||
                                  count_type == "int" || count_type == "int32";
                 p.size = ply_type_size(item_type);
+                p.item_signed = ply_type_signed(item_type);
+                p.item_integer =
+                    p.size != 0 && item_type.rfind("float", 0) != 0 && item_type != "double";
                 if (p.count_size == 0 || p.size == 0 || count_type == "float" ||
                     count_type == "double" || count_type == "float32" || count_type == "float64") {
                     fail(ErrorCode::kParse, "bad list property '" + line + "'", at);
@@ -424,8 +456,22 @@ void check_ply(const fs::path& path) {
                 p.size = ply_type_size(type);
                 if (p.size == 0) fail(ErrorCode::kParse, "bad property type '" + type + "'", at);
             }
+            for (const PlyProperty& other : elements.back().properties) {
+                if (other.name == p.name) {
+                    fail(ErrorCode::kParse,
+                         "PLY property '" + p.name + "' declared twice in element '" +
+                             elements.back().name + "'",
+                         at);
+                }
+            }
             elements.back().properties.push_back(std::move(p));
         }
+    }
+    // An element without properties: VTK's ply_close frees storage it never allocated
+    // (ASan: SEGV in free; "element vertery_big_endian 1.0" from a garbled line).
+    for (const PlyElement& e : elements) {
+        if (e.properties.empty())
+            fail(ErrorCode::kParse, "PLY element '" + e.name + "' has no properties", where);
     }
     const auto find = [&](const std::string& name) -> const PlyElement* {
         for (const PlyElement& e : elements) {
@@ -449,8 +495,30 @@ void check_ply(const fs::path& path) {
         has_indices |= p.list && (p.name == "vertex_indices" || p.name == "vertex_index");
     }
     if (!has_indices) fail(ErrorCode::kParse, "PLY faces have no vertex_indices list", where);
+    // VTK's PLY reader takes face corners as they are: one beyond the vertices is read from
+    // outside the points (SIGSEGV in vtkCell::Initialize). Every corner is checked here.
+    const auto is_indices = [&](const PlyElement& e, const PlyProperty& p) {
+        return &e == face && p.list && (p.name == "vertex_indices" || p.name == "vertex_index");
+    };
+    for (const PlyProperty& p : face->properties) {
+        if (is_indices(*face, p) && !p.item_integer) {
+            fail(ErrorCode::kParse, "PLY vertex_indices must be of an integer type", where);
+        }
+    }
+    const auto check_corner = [&](long long id, std::uint64_t f) {
+        if (id < 0 || static_cast<std::uint64_t>(id) >= vertex->count) {
+            fail(ErrorCode::kInvalidMesh,
+                 "PLY face " + std::to_string(f) + " uses vertex " + std::to_string(id) +
+                     ", out of range [0, " + std::to_string(vertex->count) + ")",
+                 where);
+        }
+    };
 
     if (format == "ascii") {
+        // VTK reads ASCII lines as C strings: a NUL ends a line's words early, and the missing
+        // ones are read through a null pointer (strtod, SIGSEGV).
+        if (bytes.find('\0', body) != std::string::npos)
+            fail(ErrorCode::kParse, "binary data (a NUL byte) in an ASCII PLY body", where);
         // One element instance per line: its token count must match the properties.
         std::size_t pos = body;
         for (const PlyElement& e : elements) {
@@ -472,14 +540,34 @@ void check_ply(const fs::path& path) {
                 for (std::string w; words >> w;) tokens.push_back(w);
                 std::size_t k = 0;
                 for (const PlyProperty& p : e.properties) {
-                    if (k >= tokens.size()) break;
+                    // Fewer tokens than properties: VTK's ASCII reader would read past its word
+                    // list (strtod of a null pointer, SIGSEGV).
+                    if (k >= tokens.size()) {
+                        k = tokens.size() + 1;
+                        break;
+                    }
                     if (p.list) {
                         char* stop = nullptr;
                         const long long n = std::strtoll(tokens[k].c_str(), &stop, 10);
-                        if (n < 0 || *stop != '\0')
+                        if (n < 0 || *stop != '\0' ||
+                            static_cast<std::uint64_t>(n) >= tokens.size() - k) {
                             k = tokens.size() + 1;
-                        else
-                            k += 1 + static_cast<std::size_t>(n);
+                            break;
+                        }
+                        if (is_indices(e, p)) {
+                            for (long long c = 1; c <= n; ++c) {
+                                char* at = nullptr;
+                                const long long id = std::strtoll(
+                                    tokens[k + static_cast<std::size_t>(c)].c_str(), &at, 10);
+                                if (*at != '\0') {
+                                    k = tokens.size() + 1;
+                                    break;
+                                }
+                                check_corner(id, i);
+                            }
+                            if (k > tokens.size()) break;
+                        }
+                        k += 1 + static_cast<std::size_t>(n);
                     } else {
                         ++k;
                     }
@@ -521,6 +609,20 @@ void check_ply(const fs::path& path) {
                     }
                     pos += static_cast<std::uint64_t>(p.count_size);
                     need(n * static_cast<std::uint64_t>(p.size));
+                    if (is_indices(e, p)) {
+                        for (std::uint64_t c = 0; c < n; ++c) {
+                            std::uint64_t v = 0;
+                            const std::size_t at = static_cast<std::size_t>(pos + c * p.size);
+                            for (int b = 0; b < p.size; ++b) {
+                                const int k = big ? b : p.size - 1 - b;
+                                v = (v << 8) | static_cast<unsigned char>(
+                                                   bytes[at + static_cast<std::size_t>(k)]);
+                            }
+                            long long id = static_cast<long long>(v);
+                            if (p.item_signed && (v >> (8 * p.size - 1)) != 0) id = -1;
+                            check_corner(id, i);
+                        }
+                    }
                     pos += n * static_cast<std::uint64_t>(p.size);
                 }
             }

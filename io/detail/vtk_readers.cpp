@@ -683,9 +683,21 @@ void check_stl(const fs::path& path, std::uintmax_t size) {
         std::memcpy(&n, head.data() + 80, 4);
         if (84 + 50 * static_cast<std::uintmax_t>(n) == size) return;  // binary
     }
+    // VTK 9.1 reads an STL as ASCII when 95% of its first 256 bytes are text
+    // (vtksys::SystemTools::DetectFileType: 0x20..0x7f, \n, \r, \t), as binary otherwise: then
+    // it allocates the triangle count of bytes 80..83, whatever the file's size (a 440-byte
+    // file asked for gigabytes). Such a file must have the binary size (checked above).
+    const std::string first = read_head(path, 256);
+    std::size_t text = 0;
+    for (unsigned char c : first) {
+        text += (c >= 0x20 && c <= 0x7f) || c == '\n' || c == '\r' || c == '\t';
+    }
+    const bool vtk_reads_binary =
+        first.empty() ||
+        static_cast<double>(first.size() - text) / static_cast<double>(first.size()) >= 0.05;
     std::size_t p = 0;
     while (p < head.size() && std::isspace(static_cast<unsigned char>(head[p]))) ++p;
-    if (head.compare(p, 5, "solid") == 0) {
+    if (!vtk_reads_binary && head.compare(p, 5, "solid") == 0) {
         // ASCII: must also be text.
         if (read_head(path, 1 << 16).find('\0') == std::string::npos) return;
     }

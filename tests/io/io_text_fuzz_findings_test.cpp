@@ -1,4 +1,4 @@
-// Inputs the text-format fuzz targets (fuzz_surface, fuzz_tetgen, fuzz_csv, fuzz_mfem;
+// Inputs the file-format fuzz targets (fuzz_surface, fuzz_tetgen, fuzz_csv, fuzz_mfem;
 // docs/fuzzing.md) found, and the holes found next to them, each pinned as a file written here:
 // read_mesh() / read_surface() must return a one-line error naming the file, never crash.
 #include <io/read_mesh.h>
@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
 #include <string>
 
 namespace tr {
@@ -129,6 +131,157 @@ TEST(IoTextFuzzFindings, MfemRepeatedSectionIsAnError) {
     write_file(dir / "twov.mesh", head + vertices + vertices);
     message = expect_error(read_mesh(dir / "twov.mesh"), dir / "twov.mesh");
     EXPECT_NE(message.find("a second 'vertices' section"), std::string::npos) << message;
+}
+
+TEST(IoTextFuzzFindings, PlyAsciiLineShortOfProperties) {
+    TempDir dir;
+    const std::string head =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    write_file(dir / "ok.ply", head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    auto ok = read_surface(dir / "ok.ply");
+    ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+    EXPECT_EQ(ok.value().triangles.size(), 1u);
+    // fuzz_surface, first run: a vertex line with 2 numbers for 3 properties passed the PLY
+    // pre-check (it stopped at the last token and found them all used) and VTK's ASCII reader
+    // called strtod on the missing third word, a null pointer (SIGSEGV). Now: "malformed PLY
+    // vertex 2: '0 1'".
+    write_file(dir / "short.ply", head + "0 0 0\n1 0 0\n0 1\n3 0 1 2\n");
+    std::string message = expect_error(read_surface(dir / "short.ply"), dir / "short.ply");
+    EXPECT_NE(message.find("malformed PLY vertex 2: '0 1'"), std::string::npos) << message;
+    // Seventh run: a NUL inside a line ended VTK's words there (a C string), the same read.
+    write_file(dir / "nul.ply",
+               head + "0 0 0\n1 0 0\n" + std::string("0 1\0 0\n", 7) + "3 0 1 2\n");
+    message = expect_error(read_surface(dir / "nul.ply"), dir / "nul.ply");
+    EXPECT_NE(message.find("a NUL byte"), std::string::npos) << message;
+}
+
+TEST(IoTextFuzzFindings, PlyFaceCornerOutOfRange) {
+    TempDir dir;
+    // fuzz_surface, second run: a binary PLY whose face list read ASCII text as big-endian ints
+    // (corners near 1e9) passed the pre-check, which walked only the sizes, and VTK's reader
+    // looked the corners up in the points (SIGSEGV in vtkCell::Initialize). Every corner is now
+    // checked, in binary and ASCII files.
+    const std::string head =
+        "ply\nformat binary_big_endian 1.0\nelement vertex 3\n"
+        "property float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const auto be32 = [](std::uint32_t v) {
+        std::string out(4, '\0');
+        for (int b = 0; b < 4; ++b) out[b] = static_cast<char>(v >> (24 - 8 * b));
+        return out;
+    };
+    std::string points;
+    for (float c : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f})
+        points += be32(std::bit_cast<std::uint32_t>(c));
+    write_file(dir / "ok.ply", head + points + '\x03' + be32(0) + be32(1) + be32(2));
+    auto ok = read_surface(dir / "ok.ply");
+    ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+    EXPECT_EQ(ok.value().triangles.size(), 1u);
+    write_file(dir / "far.ply", head + points + '\x03' + be32(0) + be32(1) + be32(0x30203020));
+    std::string message = expect_error(read_surface(dir / "far.ply"), dir / "far.ply");
+    EXPECT_NE(message.find("PLY face 0 uses vertex 807415840, out of range [0, 3)"),
+              std::string::npos)
+        << message;
+    write_file(dir / "next.ply", head + points + '\x03' + be32(0) + be32(1) + be32(3));
+    message = expect_error(read_surface(dir / "next.ply"), dir / "next.ply");
+    EXPECT_NE(message.find("uses vertex 3, out of range"), std::string::npos) << message;
+    const std::string ascii =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+        "0 0 0\n1 0 0\n0 1 0\n";
+    write_file(dir / "neg.ply", ascii + "3 0 1 -1\n");
+    message = expect_error(read_surface(dir / "neg.ply"), dir / "neg.ply");
+    EXPECT_NE(message.find("uses vertex -1, out of range"), std::string::npos) << message;
+}
+
+TEST(IoTextFuzzFindings, StlThatVtkReadsAsBinaryMustHaveTheBinarySize) {
+    TempDir dir;
+    const std::string facet =
+        "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+        "vertex 0 1 0\nendloop\nendfacet\n";
+    write_file(dir / "ok.stl", "solid t\n" + facet + "endsolid t\n");
+    auto ok = read_surface(dir / "ok.stl");
+    ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+    EXPECT_EQ(ok.value().triangles.size(), 1u);
+    // A binary STL whose 80-byte header starts with "solid" (as some exporters write it).
+    std::string binary = "solid but binary";
+    binary.resize(80, ' ');
+    const std::uint32_t one = 1;
+    binary.append(reinterpret_cast<const char*>(&one), 4);
+    const float tri[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+    binary.append(reinterpret_cast<const char*>(tri), sizeof tri);
+    binary.append(2, '\0');
+    write_file(dir / "binary.stl", binary);
+    ok = read_surface(dir / "binary.stl");
+    ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+    EXPECT_EQ(ok.value().triangles.size(), 1u);
+    // fuzz_surface, third run: a 440-byte file starting "solid" with more than 5% of its first
+    // 256 bytes not text passed the pre-check as ASCII, but VTK read it as binary and
+    // allocated bytes 80..83's triangle count (libFuzzer: out of memory, over 2 GB). Now such
+    // a file must have the binary size (measured: "not an STL file: neither ASCII ...").
+    std::string garbled = "solid t\n" + facet;
+    garbled.insert(30, std::string(100, '\x9e'));
+    garbled += "endsolid t\n";
+    write_file(dir / "garbled.stl", garbled);
+    const std::string message =
+        expect_error(read_surface(dir / "garbled.stl"), dir / "garbled.stl");
+    EXPECT_NE(message.find("not an STL file"), std::string::npos) << message;
+}
+
+TEST(IoTextFuzzFindings, PlyElementDeclaredTwice) {
+    TempDir dir;
+    // fuzz_surface, fourth run: a header with 'element vertex' twice (a line garbled between)
+    // made VTK's PLY reader free the first vertex element's storage twice (AddressSanitizer:
+    // double-free in vtkPLYReader::RequestData; heap corruption in a normal build).
+    const std::string vertex =
+        "element vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\n";
+    const std::string rest =
+        "element face 1\nproperty list uchar int vertex_indices\n"
+        "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    write_file(dir / "twice.ply", "ply\nformat ascii 1.0\n" + vertex + vertex + rest);
+    std::string message = expect_error(read_surface(dir / "twice.ply"), dir / "twice.ply");
+    EXPECT_NE(message.find("PLY element 'vertex' declared twice"), std::string::npos) << message;
+    write_file(dir / "prop.ply", "ply\nformat ascii 1.0\n" + vertex + "property float z\n" + rest);
+    message = expect_error(read_surface(dir / "prop.ply"), dir / "prop.ply");
+    EXPECT_NE(message.find("PLY property 'z' declared twice in element 'vertex'"),
+              std::string::npos)
+        << message;
+}
+
+TEST(IoTextFuzzFindings, PlyHeaderEndsAtAnEndHeaderLine) {
+    TempDir dir;
+    // fuzz_surface, fifth run: the pre-check took the header to end at the first
+    // "end_header" anywhere ("end_headeroat y"), VTK at a line whose word is end_header, so
+    // VTK read on into the body as header lines and freed garbage in ply_close (ASan: SEGV in
+    // free; silent in a normal build, which said "no triangles"). And a face count of "\x16"
+    // read as 0. Both are refused now.
+    const std::string head =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+        "property float y\nproperty float z\n";
+    const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    write_file(dir / "joined.ply", head +
+                                       "element face 1\nproperty list uchar int vertex_indices\n"
+                                       "end_headerx\n" +
+                                       body);
+    std::string message = expect_error(read_surface(dir / "joined.ply"), dir / "joined.ply");
+    EXPECT_NE(message.find("no 'end_header'"), std::string::npos) << message;
+    write_file(dir / "count.ply", head +
+                                      "element face \x16\nproperty list uchar int "
+                                      "vertex_indices\nend_header\n" +
+                                      body);
+    message = expect_error(read_surface(dir / "count.ply"), dir / "count.ply");
+    EXPECT_NE(message.find("bad element count"), std::string::npos) << message;
+    // Sixth run: "element vertery_big_endian 1.0" (a garbled line) declared an element without
+    // properties, whose storage VTK's ply_close freed without having allocated it.
+    write_file(dir / "empty.ply", "ply\nformat ascii 1.0\nelement junk 1\n" +
+                                      head.substr(std::string("ply\nformat ascii 1.0\n").size()) +
+                                      "element face 1\nproperty list uchar int vertex_indices\n"
+                                      "end_header\n" +
+                                      body);
+    message = expect_error(read_surface(dir / "empty.ply"), dir / "empty.ply");
+    EXPECT_NE(message.find("PLY element 'junk' has no properties"), std::string::npos) << message;
 }
 
 }  // namespace
