@@ -285,8 +285,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         finding("image size");
     for (const Vec3f& p : image.pixels) {
         for (int c = 0; c < 3; ++c) {
-            if (!std::isfinite(p[c]) || p[c] < -1e-4f || p[c] > 1.0001f)
+            if (!std::isfinite(p[c]) || p[c] < -1e-4f || p[c] > 1.0001f) {
+                std::fprintf(stderr, "  pixel %zu: %g %g %g\n",
+                             static_cast<std::size_t>(&p - image.pixels.data()), p[0], p[1], p[2]);
                 finding("a pixel is not finite or outside [0, 1]");
+            }
         }
     }
     return 0;
