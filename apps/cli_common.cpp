@@ -11,6 +11,13 @@
 #include <variant>
 
 namespace tr::apps {
+namespace {
+
+const char* g_program = "tetrender";
+
+}  // namespace
+
+void set_program_name(const char* name) { g_program = name; }
 
 ProgressFn terminal_progress() {
     if (!isatty(fileno(stderr))) return {};
@@ -50,7 +57,7 @@ bool parse_image_size(const std::string& text, int& width, int& height) {
 }
 
 int report_error(const Error& error) {
-    std::fprintf(stderr, "tetrender: %s\n", error.to_string().c_str());
+    std::fprintf(stderr, "%s: %s\n", g_program, error.to_string().c_str());
     return kExitError;
 }
 
@@ -77,13 +84,13 @@ Status check_output_path(const std::string& path, const std::vector<std::string>
 }
 
 int report_usage(const Error& error) {
-    std::fprintf(stderr, "tetrender: %s\n", error.to_string().c_str());
+    std::fprintf(stderr, "%s: %s\n", g_program, error.to_string().c_str());
     return kExitUsage;
 }
 
 void print_notes(const std::vector<std::string>& notes) {
     for (const std::string& note : notes)
-        std::fprintf(stderr, "tetrender: note: %s\n", note.c_str());
+        std::fprintf(stderr, "%s: note: %s\n", g_program, note.c_str());
 }
 
 void print_stats(const NamedStats& stats) {

@@ -33,13 +33,16 @@ bool parse_image_size(const std::string& text, int& width, int& height);
 // (".png", ...; case-sensitive) and its folder exists. Error kInvalidArgument saying which.
 Status check_output_path(const std::string& path, const std::vector<std::string>& extensions);
 
-// Prints "tetrender: <error>" on stderr, returns kExitError.
+// The name the messages below start with: "tetrender" (default) or "tetrender-view".
+void set_program_name(const char* name);
+
+// Prints "<program>: <error>" on stderr, returns kExitError.
 int report_error(const Error& error);
 
-// Prints "tetrender: <error>" on stderr, returns kExitUsage: a bad command-line value.
+// Prints "<program>: <error>" on stderr, returns kExitUsage: a bad command-line value.
 int report_usage(const Error& error);
 
-// Prints each note as "tetrender: note: ..." on stderr.
+// Prints each note as "<program>: note: ..." on stderr.
 void print_notes(const std::vector<std::string>& notes);
 
 // Prints the stats as one JSON object on stdout.

@@ -35,9 +35,9 @@ std::optional<SplatCompositing> parse_compositing(std::string_view name) {
 
 // The point array `name` of the loaded mesh as one vector per point. Errors: no such array,
 // or one without 3 components (a scalar: naming its components).
-Result<std::vector<Vec3>> point_vectors(const LoadedMesh& mesh, const std::string& name,
+Result<std::vector<Vec3>> point_vectors(const TetMesh& mesh, const std::string& name,
                                         const std::string& where) {
-    const Field* field = find_field(mesh.tets.point_fields(), name);
+    const Field* field = find_field(mesh.point_fields(), name);
     if (!field) {
         return make_error(ErrorCode::kInvalidArgument,
                           "splat: no point array '" + name + "' for the vectors", where);
@@ -59,9 +59,9 @@ Result<std::vector<Vec3>> point_vectors(const LoadedMesh& mesh, const std::strin
 
 // The point array `name` as one radius per point. Errors: no such array, not 1 component, a
 // radius that is not > 0 and finite (the first, by point index).
-Result<std::vector<float>> point_radii(const LoadedMesh& mesh, const std::string& name,
+Result<std::vector<float>> point_radii(const TetMesh& mesh, const std::string& name,
                                        const std::string& where) {
-    const Field* field = find_field(mesh.tets.point_fields(), name);
+    const Field* field = find_field(mesh.point_fields(), name);
     if (!field) {
         return make_error(ErrorCode::kInvalidArgument,
                           "splat: no point array '" + name + "' for the radius", where);
@@ -189,132 +189,18 @@ class Splat final : public RenderMethod {
                load_scene_volumes(pipeline, scene, result.stats));
         const CameraFrame frame(scene.camera, scene.width, scene.height);
         TR_TRY(const OpaqueLayer layer, opaque_layer(pipeline, scene, frame, result.stats));
-        SplatKernel kernel = SplatKernel::kCrawfisMax;
-        if (const MethodOption* o = option(scene, "kernel")) {
-            kernel = *parse_kernel(std::get<std::string>(*o));
-        }
-        SplatCompositing compositing = SplatCompositing::kPerSplat;
-        if (const MethodOption* o = option(scene, "compositing")) {
-            compositing = *parse_compositing(std::get<std::string>(*o));
-        }
-        const std::vector<Vec3>& points = loaded->meshes[0]->tets.points();
-        double spacing = lattice_spacing(points);
-        if (const MethodOption* o = option(scene, "spacing")) {
-            const double* d = std::get_if<double>(o);
-            spacing = d ? *d : static_cast<double>(std::get<std::int64_t>(*o));
-        }
-        if (!(spacing > 0)) {
-            return make_error(ErrorCode::kInvalidArgument,
-                              "splat: the mesh's points have no spacing (fewer than two, or all "
-                              "at one place); give the method key 'spacing'",
-                              scene.volumes[0].mesh.string());
-        }
-        if (const MethodOption* o = option(scene, "vectors")) {
-            TR_TRY(const std::vector<Vec3> vectors,
-                   point_vectors(*loaded->meshes[0], std::get<std::string>(*o),
-                                 scene.volumes[0].mesh.string()));
-            StreakTextureOptions texture_options;
-            if (const MethodOption* c = option(scene, "cycle")) {
-                texture_options.cycle = static_cast<int>(std::get<std::int64_t>(*c));
-            }
-            int k = 0;
-            if (const MethodOption* f = option(scene, "frame")) {
-                const std::int64_t n = texture_options.cycle;
-                k = static_cast<int>(((std::get<std::int64_t>(*f) % n) + n) % n);
-            }
-            const StreakTexture texture(texture_options);
-            VectorSplatInputs in;
-            in.points = points;
-            in.scalar = loaded->scalars[0];
-            in.vectors = vectors;
-            in.spacing = spacing;
-            in.tf = &scene.volumes[0].transfer_function;
-            in.texture = &texture;
-            in.camera = &frame;
-            in.frame = k;
-            in.background = scene.background;
-            if (!layer.depth.empty()) {
-                in.opaque_color = &layer.color;
-                in.opaque_depth = &layer.depth;
-            }
-            VectorSplatStats stats;
-            const std::clock_t cpu = std::clock();
-            result.image = render_vector_splats(in, &stats);
-            NamedStats& s = result.stats;
-            s.set("raster_ms", stats.raster_ms);
-            s.set("raster_cpu_ms", cpu_ms_since(cpu));
-            s.set("points", points.size());
-            s.set("splats_drawn", stats.splats_drawn);
-            s.set("fragments", stats.fragments);
-            s.set("method", std::string(name()));
-            s.set("vectors", std::get<std::string>(*o));
-            s.set("cycle", texture_options.cycle);
-            s.set("frame", k);
-            s.set("fastest", stats.fastest);
-            s.set("spacing", spacing);
-            s.set("threads", thread_count());
-            s.set("width", scene.width);
-            s.set("height", scene.height);
-            if (option(scene, "kernel")) {
-                result.notes.push_back("vector splats are textured with streaks: kernel ignored");
-            }
-            return result;
-        }
-        // Each splat's scale: the radius array named; else, for points that are not a lattice
-        // (a cloud, a mesh's nodes) and no `spacing` given, each point's local spacing, so that
-        // dense and sparse regions get the optical depth of their own density; else the
-        // lattice spacing.
-        std::vector<float> radii;
-        std::string scaled_by = "spacing";
-        if (const MethodOption* o = option(scene, "radius")) {
-            TR_TRY(radii, point_radii(*loaded->meshes[0], std::get<std::string>(*o),
-                                      scene.volumes[0].mesh.string()));
-            scaled_by = "radius array";
-        } else if (!option(scene, "spacing") && compositing == SplatCompositing::kPerSplat &&
-                   !is_axis_aligned_lattice(points)) {
-            const auto spacing_start = std::chrono::steady_clock::now();
-            radii = local_spacing(points);
-            result.stats.set("local_spacing_ms", ms_since(spacing_start));
-            scaled_by = "local spacing";
-        }
-        const SplatFootprint footprint(kernel);
-        SplatInputs in;
-        in.radius = radii;
-        in.points = points;
-        in.scalar = loaded->scalars[0];
-        in.spacing = spacing;
-        in.tf = &scene.volumes[0].transfer_function;
-        in.footprint = &footprint;
-        in.camera = &frame;
-        in.background = scene.background;
-        in.compositing = compositing;
-        if (!layer.depth.empty()) {
-            in.opaque_color = &layer.color;
-            in.opaque_depth = &layer.depth;
-        }
-        SplatStats stats;
-        const std::clock_t cpu = std::clock();
-        result.image = render_splats(in, &stats);
-        NamedStats& s = result.stats;
-        s.set("scaled_by", scaled_by);
-        s.set("raster_ms", stats.raster_ms);
-        s.set("raster_cpu_ms", cpu_ms_since(cpu));
-        s.set("points", points.size());
-        s.set("splats_drawn", stats.splats_drawn);
-        s.set("fragments", stats.fragments);
-        s.set("method", std::string(name()));
-        s.set("kernel", std::string(splat_kernel_name(kernel)));
-        s.set("spacing", spacing);
-        s.set("compositing",
-              std::string(compositing == SplatCompositing::kSheetBuffer ? "sheet-buffer"
-                                                                        : "per-splat"));
-        if (compositing == SplatCompositing::kSheetBuffer) {
-            s.set("sheets", stats.sheets);
-            s.set("sheet_axis", stats.sheet_axis);
-        }
-        s.set("threads", thread_count());
-        s.set("width", scene.width);
-        s.set("height", scene.height);
+        SplatPicture picture;
+        picture.mesh = &loaded->meshes[0]->tets;
+        picture.scalar = loaded->scalars[0];
+        picture.tf = &scene.volumes[0].transfer_function;
+        picture.camera = &frame;
+        picture.background = scene.background;
+        picture.opaque = &layer;
+        picture.where = scene.volumes[0].mesh.string();
+        TR_TRY(result.image,
+               render_splat_picture(picture, splat_settings(scene), &result.stats, &result.notes));
+        result.stats.set("width", scene.width);
+        result.stats.set("height", scene.height);
         return result;
     }
 };
@@ -322,6 +208,152 @@ class Splat final : public RenderMethod {
 }  // namespace
 
 std::unique_ptr<RenderMethod> make_splat_method() { return std::make_unique<Splat>(); }
+
+SplatSettings splat_settings(const Scene& scene) {
+    SplatSettings settings;
+    if (const MethodOption* o = option(scene, "kernel")) {
+        if (const auto* v = std::get_if<std::string>(o)) {
+            settings.kernel = parse_kernel(*v).value_or(SplatKernel::kCrawfisMax);
+            settings.kernel_given = true;
+        }
+    }
+    if (const MethodOption* o = option(scene, "compositing")) {
+        if (const auto* v = std::get_if<std::string>(o)) {
+            settings.compositing = parse_compositing(*v).value_or(SplatCompositing::kPerSplat);
+        }
+    }
+    if (const MethodOption* o = option(scene, "spacing")) {
+        if (const double* d = std::get_if<double>(o)) settings.spacing = *d;
+        if (const auto* i = std::get_if<std::int64_t>(o)) settings.spacing = double(*i);
+    }
+    if (const MethodOption* o = option(scene, "radius")) {
+        if (const auto* v = std::get_if<std::string>(o)) settings.radius = *v;
+    }
+    if (const MethodOption* o = option(scene, "vectors")) {
+        if (const auto* v = std::get_if<std::string>(o)) settings.vectors = *v;
+    }
+    if (const MethodOption* o = option(scene, "cycle")) {
+        if (const auto* i = std::get_if<std::int64_t>(o)) settings.cycle = static_cast<int>(*i);
+    }
+    if (const MethodOption* o = option(scene, "frame")) {
+        if (const auto* i = std::get_if<std::int64_t>(o)) settings.frame = *i;
+    }
+    return settings;
+}
+
+Result<Image> render_splat_picture(const SplatPicture& picture, const SplatSettings& settings,
+                                   NamedStats* stats_out, std::vector<std::string>* notes) {
+    const TetMesh& mesh = *picture.mesh;
+    const std::size_t count =
+        picture.points > 0 ? std::min(picture.points, mesh.num_points()) : mesh.num_points();
+    const std::span<const Vec3> points(mesh.points().data(), count);
+    const std::span<const float> scalar = picture.scalar.subspan(0, count);
+    NamedStats discard;
+    NamedStats& s = stats_out ? *stats_out : discard;
+    double spacing = settings.spacing.value_or(lattice_spacing(points));
+    if (!(spacing > 0)) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "splat: the mesh's points have no spacing (fewer than two, or all at "
+                          "one place); give the method key 'spacing'",
+                          picture.where);
+    }
+    const OpaqueLayer* layer = picture.opaque;
+    const bool opaque = layer && !layer->depth.empty();
+    if (!settings.vectors.empty()) {
+        TR_TRY(std::vector<Vec3> vectors, point_vectors(mesh, settings.vectors, picture.where));
+        vectors.resize(count);
+        StreakTextureOptions texture_options;
+        texture_options.cycle = settings.cycle;
+        const std::int64_t n = texture_options.cycle;
+        const int k = static_cast<int>(((settings.frame % n) + n) % n);
+        const StreakTexture texture(texture_options);
+        VectorSplatInputs in;
+        in.points = points;
+        in.scalar = scalar;
+        in.vectors = vectors;
+        in.spacing = spacing;
+        in.tf = picture.tf;
+        in.texture = &texture;
+        in.camera = picture.camera;
+        in.frame = k;
+        in.background = picture.background;
+        if (opaque) {
+            in.opaque_color = &layer->color;
+            in.opaque_depth = &layer->depth;
+        }
+        VectorSplatStats stats;
+        const std::clock_t cpu = std::clock();
+        Image image = render_vector_splats(in, &stats);
+        s.set("raster_ms", stats.raster_ms);
+        s.set("raster_cpu_ms", cpu_ms_since(cpu));
+        s.set("points", points.size());
+        s.set("splats_drawn", stats.splats_drawn);
+        s.set("fragments", stats.fragments);
+        s.set("method", std::string("splat"));
+        s.set("vectors", settings.vectors);
+        s.set("cycle", texture_options.cycle);
+        s.set("frame", k);
+        s.set("fastest", stats.fastest);
+        s.set("spacing", spacing);
+        s.set("threads", thread_count());
+        if (settings.kernel_given && notes) {
+            notes->push_back("vector splats are textured with streaks: kernel ignored");
+        }
+        return image;
+    }
+    // Each splat's scale: the radius array named; else, for points that are not a lattice (a
+    // cloud, a mesh's nodes) and no `spacing` given, each point's local spacing, so that dense
+    // and sparse regions get the optical depth of their own density; else the lattice spacing.
+    std::vector<float> radii;
+    std::string scaled_by = "spacing";
+    if (!settings.radius.empty()) {
+        TR_TRY(radii, point_radii(mesh, settings.radius, picture.where));
+        radii.resize(count);
+        scaled_by = "radius array";
+    } else if (!settings.spacing && settings.compositing == SplatCompositing::kPerSplat &&
+               !is_axis_aligned_lattice(points)) {
+        const auto spacing_start = std::chrono::steady_clock::now();
+        radii = local_spacing(points);
+        s.set("local_spacing_ms", ms_since(spacing_start));
+        scaled_by = "local spacing";
+    }
+    const SplatFootprint footprint(settings.kernel);
+    SplatInputs in;
+    in.radius = radii;
+    in.points = points;
+    in.scalar = scalar;
+    in.spacing = spacing;
+    in.tf = picture.tf;
+    in.footprint = &footprint;
+    in.camera = picture.camera;
+    in.background = picture.background;
+    in.compositing = settings.compositing;
+    if (opaque) {
+        in.opaque_color = &layer->color;
+        in.opaque_depth = &layer->depth;
+    }
+    SplatStats stats;
+    const std::clock_t cpu = std::clock();
+    Image image = render_splats(in, &stats);
+    s.set("scaled_by", scaled_by);
+    s.set("raster_ms", stats.raster_ms);
+    s.set("raster_cpu_ms", cpu_ms_since(cpu));
+    s.set("points", points.size());
+    s.set("splats_drawn", stats.splats_drawn);
+    s.set("fragments", stats.fragments);
+    s.set("method", std::string("splat"));
+    s.set("kernel", std::string(splat_kernel_name(settings.kernel)));
+    s.set("spacing", spacing);
+    s.set("compositing",
+          std::string(settings.compositing == SplatCompositing::kSheetBuffer ? "sheet-buffer"
+                                                                             : "per-splat"));
+    if (settings.compositing == SplatCompositing::kSheetBuffer) {
+        s.set("sheets", stats.sheets);
+        s.set("sheet_axis", stats.sheet_axis);
+    }
+    s.set("threads", thread_count());
+    return image;
+}
 
 Result<SplatCycle> render_splat_cycle(Pipeline& pipeline, const Scene& scene,
                                       const std::string& vectors, int cycle,

@@ -13,18 +13,64 @@
 // animation's cycle, 1 to kMaxSplatCycle, default 8), frame (which of them, taken modulo N;
 // default 0); cycle and frame need vectors, vectors refuses the sheet buffer.
 
+#include <core/camera.h>
 #include <core/image.h>
 #include <core/result.h>
+#include <mesh/tet_mesh.h>
+#include <project/opaque_geometry.h>
+#include <project/splat_renderer.h>
+#include <project/transfer_function.h>
 
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <pipeline/method.h>
 #include <pipeline/pipeline.h>
+#include <span>
 #include <string>
 #include <vector>
 
 namespace tr {
 
 std::unique_ptr<RenderMethod> make_splat_method();
+
+// The method keys as the picture takes them (after Pipeline::check accepted them).
+struct SplatSettings {
+    SplatKernel kernel = SplatKernel::kCrawfisMax;
+    bool kernel_given = false;  // vector splats ignore it (a note says so)
+    SplatCompositing compositing = SplatCompositing::kPerSplat;
+    std::optional<double> spacing;  // else the lattice's, or each point's local spacing
+    std::string radius;             // a 1-component point array, or empty
+    std::string vectors;            // a 3-component point array, or empty
+    int cycle = 8;
+    std::int64_t frame = 0;  // taken modulo cycle
+};
+
+// The scene's splat keys (a scene without them: the defaults).
+SplatSettings splat_settings(const Scene& scene);
+
+// What one splat picture is made of: the first `points` points of `mesh` (0: all; the points
+// real tets use come first, convexification appends its own), their scalar (one per point of
+// `mesh` at least), the transfer function, camera, background and the opaque layer drawn.
+// `where` names the mesh in errors.
+struct SplatPicture {
+    const TetMesh* mesh = nullptr;
+    std::size_t points = 0;
+    std::span<const float> scalar;
+    const TransferFunction* tf = nullptr;
+    const CameraFrame* camera = nullptr;
+    Vec3 background{0.0};
+    const OpaqueLayer* opaque = nullptr;  // or null
+    std::string where;
+};
+
+// The picture the `splat` method draws (its render() is this after loading): scalar splats
+// scaled as `settings` says, or, with `vectors`, textured vector splats at frame `frame` of
+// their cycle. Errors (one line, naming `where`): no spacing, a missing or malformed radius or
+// vector array. Stats (raster time, points, fragments, ...) go to `stats`, notes to `notes`.
+Result<Image> render_splat_picture(const SplatPicture& picture, const SplatSettings& settings,
+                                   NamedStats* stats = nullptr,
+                                   std::vector<std::string>* notes = nullptr);
 
 inline constexpr int kMaxSplatCycle = 1024;
 

@@ -52,6 +52,7 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
                     make_error(ErrorCode::kInternal, fused ? fused->error : "no fused picture"));
             }
         } else if (particles) {
+            view.set_splat_frame(i);  // vector splats: frame i of the texture cycle
             shown = view.draw_particles(camera, width, height, last ? target : batch);
             if (!shown || !shown->error.empty()) {
                 return apps::report_error(make_error(
@@ -110,6 +111,16 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
                      f.exact ? "exact picture" : "pbvr-image picture", f.repetitions, f.batches,
                      f.mean_batch_ms, f.exact_ms, f.setup_ms, f.particles, f.fragments,
                      f.overlap_intervals, width, height);
+        return apps::kExitOk;
+    }
+    if (particles && view.mode() == ViewMethod::kSplat) {
+        const PbvrFrame& f = *shown;
+        std::fprintf(stderr,
+                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), splat: %.1f ms "
+                     "the last picture%s, %dx%d\n",
+                     frames, frame_ms / frames, 1000.0 * frames / frame_ms, f.batch_ms,
+                     view.splat_cycle() ? " (vector splats, frame i of the cycle at frame i)" : "",
+                     width, height);
         return apps::kExitOk;
     }
     if (particles) {

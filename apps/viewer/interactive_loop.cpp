@@ -38,7 +38,8 @@ int run_interactive(GLFWwindow* window, VolumeView& view, ViewerPanel& panel,
             view.set_fused_mode(
                 static_cast<FusedMode>((static_cast<int>(view.fused_mode()) + 1) % 3));
         } else if (actions.next_method) {
-            view.set_mode(static_cast<ViewMethod>((static_cast<int>(view.mode()) + 1) % 3));
+            view.set_mode(
+                static_cast<ViewMethod>((static_cast<int>(view.mode()) + 1) % kViewMethods));
         }
         if (actions.toggle_keys) {
             panel.toggle_keys();

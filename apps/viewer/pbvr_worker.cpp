@@ -6,6 +6,7 @@
 #include <chrono>
 #include <new>
 #include <pipeline/loaded_mesh.h>
+#include <pipeline/splat_method.h>
 
 namespace tr::viewer {
 
@@ -165,7 +166,7 @@ void PbvrWorker::begin(Job& job) {
             }
             job.scene.volumes[0].shader = &shader_->shader;
         }
-    } else {
+    } else if (r.method == ViewMethod::kPbvrObject) {
         // The kept particles hold for the same scalar and a camera they are reusable for.
         const bool reuse = !kept_.empty() && kept_scalar_version_ == r.scalar_version &&
                            std::all_of(kept_.begin(), kept_.end(), [&](const KeptBatch& k) {
@@ -191,7 +192,27 @@ void PbvrWorker::run_batch(Job& job, int target) {
         std::clamp(std::min(settings_.batch_for(r.method), target - stats.repetitions), 1, most);
     Image image;
     int drawn = repetitions;
-    if (r.method == ViewMethod::kPbvrImage) {
+    if (r.method == ViewMethod::kSplat) {
+        // One picture is the whole of it: it counts for every repetition still wanted.
+        SplatPicture picture;
+        picture.mesh = &mesh_;
+        picture.points = settings_.splat_points;
+        picture.scalar = *r.scalar;
+        picture.tf = r.tf.get();
+        picture.camera = &*job.frame;
+        picture.background = r.background;
+        picture.opaque = &job.opaque;
+        picture.where = "splat";
+        SplatSettings splat = settings_.splat;
+        splat.frame = r.splat_frame;
+        auto made = render_splat_picture(picture, splat);
+        if (!made.ok()) {
+            stats.error = made.error().to_string();
+            return;
+        }
+        image = std::move(made).value();
+        drawn = std::max(target - stats.repetitions, 1);
+    } else if (r.method == ViewMethod::kPbvrImage) {
         ImagePbvrOptions options = settings_.image;
         options.repetitions = repetitions;
         options.seed = seed;

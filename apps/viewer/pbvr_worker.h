@@ -6,6 +6,10 @@
 // accumulation after the batch in progress. The window never waits for it: it shows the latest
 // accumulated picture.
 //
+// Splatting (ViewMethod::kSplat) runs here too: one request is one picture
+// (pipeline/splat_method.h render_splat_picture, as `tetrender render --method splat` draws it),
+// finished at once; with vector splats the request names the frame of the texture cycle.
+//
 // O-PBVR keeps the particles of a view's first batches (ObjectParticleSet, up to
 // PbvrSettings::max_kept_bytes): when a new request differs only in its transfer function, or
 // turns an orthographic camera (ObjectParticleSet::reusable_for), the kept particles are drawn
@@ -33,7 +37,7 @@ namespace tr::viewer {
 
 // The view to accumulate.
 struct PbvrRequest {
-    ViewMethod method = ViewMethod::kPbvrImage;  // kPbvrImage or kPbvrObject
+    ViewMethod method = ViewMethod::kPbvrImage;  // kPbvrImage, kPbvrObject or kSplat
     Camera camera;
     int width = 0, height = 0;                         // the picture, >= 1 each
     std::shared_ptr<const std::vector<float>> scalar;  // one per mesh point
@@ -41,6 +45,7 @@ struct PbvrRequest {
     std::shared_ptr<const TransferFunction> tf;
     std::uint64_t tf_version = 0;  // changes whenever `tf` does
     Vec3 background{0.0};
+    std::int64_t splat_frame = 0;  // splat with vectors: the frame of the texture cycle
 };
 
 // The accumulation so far of one request.

@@ -6,7 +6,8 @@
 namespace tr::viewer {
 namespace {
 
-constexpr std::string_view kNames[] = {"projected-tetrahedra", "pbvr-image", "pbvr-object"};
+constexpr std::string_view kNames[] = {"projected-tetrahedra", "pbvr-image", "pbvr-object",
+                                       "splat"};
 
 // The method's own option `key` (checked by Pipeline::check before it is read here).
 const MethodOption* option(const MethodSpec& spec, const std::string& key) {
@@ -19,7 +20,7 @@ const MethodOption* option(const MethodSpec& spec, const std::string& key) {
 std::string_view view_method_name(ViewMethod method) { return kNames[static_cast<int>(method)]; }
 
 std::optional<ViewMethod> view_method_named(std::string_view name) {
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < kViewMethods; ++i) {
         if (kNames[i] == name) return static_cast<ViewMethod>(i);
     }
     return std::nullopt;
@@ -36,7 +37,7 @@ Result<ResolvedMethod> resolve_method(const Pipeline& pipeline, const Scene& sce
         return make_error(ErrorCode::kInvalidArgument,
                           what + "'" + name +
                               "' is not drawn by the viewer (projected-tetrahedra, pbvr-image, "
-                              "pbvr-object)");
+                              "pbvr-object, splat)");
     };
     // The scene's method, checked as `tetrender render` checks it (without the flow volume,
     // which the viewer draws by projected tetrahedra whatever the mode).
@@ -57,6 +58,14 @@ Result<ResolvedMethod> resolve_method(const Pipeline& pipeline, const Scene& sce
     if (args.seed) {
         if (!checked.method) checked.method.emplace();
         checked.method->seed = *args.seed;
+    }
+    if (!args.vectors.empty() || args.cycle > 0) {
+        if (checked.method_name() != "splat") {
+            return make_error(ErrorCode::kInvalidArgument,
+                              "--vectors and --cycle are for --method splat");
+        }
+        if (!args.vectors.empty()) checked.method->options["vectors"] = args.vectors;
+        if (args.cycle > 0) checked.method->options["cycle"] = std::int64_t{args.cycle};
     }
     const std::optional<ViewMethod> method = view_method_named(checked.method_name());
     if (!method) return unknown(scene.source + ": $.method.name: ", checked.method_name());
@@ -86,6 +95,7 @@ Result<ResolvedMethod> resolve_method(const Pipeline& pipeline, const Scene& sce
             pbvr.object.sampling = *parse_particle_sampling(std::get<std::string>(*o));
         }
     }
+    if (resolved.method == ViewMethod::kSplat) pbvr.splat = splat_settings(checked);
     return resolved;
 }
 

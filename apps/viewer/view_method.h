@@ -1,7 +1,8 @@
 #pragma once
-// How the viewer makes its picture: projected tetrahedra in OpenGL (the default), or
-// particle-based volume rendering by the library on the CPU (pbvr-image, pbvr-object), and the
-// particle-based modes' settings, from the command line or a scene file's `method` key.
+// How the viewer makes its picture: projected tetrahedra in OpenGL (the default), or by the
+// library on the CPU: particle-based volume rendering (pbvr-image, pbvr-object) or splatting of
+// the mesh's points (splat, with textured vector splats whose cycle plays live); and the CPU
+// modes' settings, from the command line or a scene file's `method` key.
 
 #include <core/result.h>
 #include <project/pbvr_image.h>
@@ -12,14 +13,16 @@
 #include <cstdint>
 #include <optional>
 #include <pipeline/pipeline.h>
+#include <pipeline/splat_method.h>
 #include <string>
 #include <string_view>
 
 namespace tr::viewer {
 
-enum class ViewMethod { kProjectedTetrahedra, kPbvrImage, kPbvrObject };
+enum class ViewMethod { kProjectedTetrahedra, kPbvrImage, kPbvrObject, kSplat };
+inline constexpr int kViewMethods = 4;
 
-// "projected-tetrahedra", "pbvr-image", "pbvr-object": the scene file's method names.
+// "projected-tetrahedra", "pbvr-image", "pbvr-object", "splat": the scene file's method names.
 std::string_view view_method_name(ViewMethod method);
 std::optional<ViewMethod> view_method_named(std::string_view name);
 
@@ -41,6 +44,11 @@ struct PbvrSettings {
     // O-PBVR: the particles of the first batches of a view are kept (ObjectParticleSet) up to
     // this many bytes, to re-render after a transfer-function edit or an orthographic rotation.
     std::size_t max_kept_bytes = std::size_t{512} << 20;
+    // splat: the scene's splat keys and --vectors / --cycle (pipeline/splat_method.h; its frame
+    // comes with each request), and how many of the mesh's points are the file's (0: all; the
+    // convexification's come after them and are not drawn).
+    SplatSettings splat;
+    std::size_t splat_points = 0;
 
     // The batch size for `method`: `batch`, else 16 for pbvr-image (a batch's cost is mostly
     // the segments on the pixel rays, the same for 1 or 16 repetitions) and 4 for pbvr-object
@@ -55,6 +63,8 @@ struct MethodArgs {
     std::optional<std::int64_t> seed;
     int batch = 0;  // 0: the method's default
     bool headless = false;
+    std::string vectors;  // splat: textured vector splats of this point array (method splat)
+    int cycle = 0;        // splat: textures in their cycle (0: the scene's, else 8)
 };
 
 struct ResolvedMethod {
@@ -66,8 +76,9 @@ struct ResolvedMethod {
 // scene's own method keys (pbvr-image's depth and stratified, pbvr-object's subpixel_level and
 // sampling) are checked as `tetrender render` checks them (Pipeline::check) and kept; a
 // command-line method other than the scene's drops them. `pipeline` only checks. Errors:
-// kInvalidArgument for an unknown --method, a method the viewer does not draw (naming the three it
-// does), the pipeline's errors for the scene's method keys.
+// kInvalidArgument for an unknown --method, a method the viewer does not draw (naming the four it
+// does), --vectors or --cycle for another method than splat, the pipeline's errors for the
+// scene's method keys.
 Result<ResolvedMethod> resolve_method(const Pipeline& pipeline, const Scene& scene,
                                       const MethodArgs& args);
 

@@ -52,6 +52,8 @@ struct Args {
     double unit_distance = 0;
     int time_step = 0;
     std::string max_memory;
+    std::string vectors;        // splat: textured vector splats of this point array
+    int cycle = 0;              // splat: textures in their cycle
     apps::QuickLookArgs quick;  // mesh mode: the quick look's options beyond the four above
     std::vector<std::string> quick_given;  // those given (refused with a scene file)
     bool panel_in_screenshot = false;
@@ -152,7 +154,7 @@ int run(const Args& args) {
     if (!args.method.empty() && !view_method_named(args.method)) {
         std::fprintf(stderr,
                      "tetrender-view: unknown --method '%s' (projected-tetrahedra, pbvr-image, "
-                     "pbvr-object)\n",
+                     "pbvr-object, splat)\n",
                      args.method.c_str());
         return apps::kExitUsage;
     }
@@ -186,11 +188,16 @@ int run(const Args& args) {
     auto loaded = load_viewer_scene(options);
     if (!loaded.ok()) return apps::report_error(loaded.error());
     ViewerScene vs = std::move(loaded).value();
-    MethodArgs method_args{args.method, args.repetitions, args.seed, args.batch, headless};
+    MethodArgs method_args{args.method, args.repetitions, args.seed, args.batch,
+                           headless,    args.vectors,     args.cycle};
     auto resolved = resolve_method(*vs.pipeline, vs.scene, method_args);
     if (!resolved.ok()) return apps::report_error(resolved.error());
     vs.method = resolved->method;
     vs.pbvr = resolved->pbvr;
+    // Splats are of the file's points: the convexification's (appended) are not drawn.
+    if (auto loaded = vs.pipeline->mesh(vs.volume()); loaded.ok()) {
+        vs.pbvr.splat_points = (*loaded)->tets.num_points();
+    }
     if (!vs.fused.empty()) {
         // Several volumes: drawn fused on the CPU. projected-tetrahedra (the default) is the
         // exact fused picture, as `tetrender render` draws such a scene.
@@ -306,6 +313,7 @@ int run(const Args& args) {
 
 int main(int argc, char** argv) {
     tr::viewer::Args args;
+    tr::apps::set_program_name("tetrender-view");
     CLI::App app{
         "tetrender-view: interactive viewer: projected tetrahedra (OpenGL 3.3) or particle-based "
         "volume rendering (CPU, progressive). Keys: left drag rotate, right drag / wheel zoom, "
@@ -330,9 +338,15 @@ int main(int argc, char** argv) {
     app.add_option("--sort", args.sort, "auto (default), mpvo, mpvonc, exact, centroid");
     app.add_option("--method", args.method,
                    "projected-tetrahedra (default, OpenGL), pbvr-image or pbvr-object (particles "
-                   "on the CPU, accumulated while the camera is still; default: the scene's). A "
-                   "scene of several volumes is drawn fused on the CPU: projected-tetrahedra is "
-                   "then the exact fused picture, pbvr-image fused particles");
+                   "on the CPU, accumulated while the camera is still), splat (the mesh's points "
+                   "splatted on the CPU; default: the scene's). A scene of several volumes is "
+                   "drawn fused on the CPU: projected-tetrahedra is then the exact fused "
+                   "picture, pbvr-image fused particles");
+    app.add_option("--vectors", args.vectors,
+                   "Splat: textured vector splats along this 3-component point array, their "
+                   "texture cycle playing (headless: frame i of --frames draws cycle frame i)");
+    app.add_option("--cycle", args.cycle, "Splat: textures in the vector splats' cycle (default 8)")
+        ->check(CLI::Range(1, tr::kMaxSplatCycle));
     app.add_option("--repetitions", args.repetitions,
                    "Particle-based: repetitions to accumulate (default: the scene's, else 64 "
                    "headless, 1024 interactively)")

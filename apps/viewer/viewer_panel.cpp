@@ -112,8 +112,8 @@ void ViewerPanel::draw_panel() {
     }
     // How the picture is made; projected tetrahedra's sort and integrator.
     if (ImGui::BeginCombo("method", view_method_name(view_.mode()).data())) {
-        for (ViewMethod m :
-             {ViewMethod::kProjectedTetrahedra, ViewMethod::kPbvrImage, ViewMethod::kPbvrObject}) {
+        for (ViewMethod m : {ViewMethod::kProjectedTetrahedra, ViewMethod::kPbvrImage,
+                             ViewMethod::kPbvrObject, ViewMethod::kSplat}) {
             if (ImGui::Selectable(view_method_name(m).data(), m == view_.mode())) view_.set_mode(m);
         }
         ImGui::EndCombo();

@@ -156,7 +156,8 @@ bool VolumeView::ParticleKey::operator==(const ParticleKey& o) const {
     return method == o.method && a.position == b.position && a.focal_point == b.focal_point &&
            a.view_up == b.view_up && a.view_angle == b.view_angle && a.parallel == b.parallel &&
            a.parallel_scale == b.parallel_scale && width == o.width && height == o.height &&
-           tf_version == o.tf_version && scalar_version == o.scalar_version;
+           tf_version == o.tf_version && scalar_version == o.scalar_version &&
+           splat_frame == o.splat_frame;
 }
 
 void VolumeView::set_mode(ViewMethod mode) {
@@ -176,7 +177,8 @@ std::optional<PbvrFrame> VolumeView::draw_particles(const Camera& camera, int wi
         pbvr_scalar_ = std::make_shared<const std::vector<float>>(vs_.scalar);
         pbvr_scalar_version_ = scalar_version_;
     }
-    const ParticleKey key{mode_, camera, width, height, tf_version_, scalar_version_};
+    const std::int64_t splat_frame = splat_cycle() ? splat_frame_ : 0;
+    const ParticleKey key{mode_, camera, width, height, tf_version_, scalar_version_, splat_frame};
     if (!pbvr_key_ || !(key == *pbvr_key_)) {
         PbvrRequest request;
         request.method = mode_;
@@ -188,6 +190,7 @@ std::optional<PbvrFrame> VolumeView::draw_particles(const Camera& camera, int wi
         request.tf = pbvr_tf_;
         request.tf_version = static_cast<std::uint64_t>(tf_version_);
         request.background = vs_.scene.background;
+        request.splat_frame = splat_frame;
         pbvr_requested_id_ = pbvr_.request(std::move(request));
         pbvr_key_ = key;
     }
@@ -232,6 +235,13 @@ bool VolumeView::draw(const Camera& camera, int width, int height) {
         return true;
     }
     if (particle_mode()) {
+        // Vector splats play their texture cycle: the frame follows the clock (the loop looks
+        // at least every 0.1 s).
+        if (splat_cycle()) {
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+            splat_frame_ = static_cast<std::int64_t>(seconds * kSplatCycleFps);
+        }
         // The worker's next batch wakes the window loop (set_wake).
         draw_particles(camera, width, height, 0);
         return true;

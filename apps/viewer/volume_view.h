@@ -12,6 +12,7 @@
 #include <apps/viewer/viewer_scene.h>
 #include <project/gl/gl_renderer.h>
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -61,6 +62,13 @@ class VolumeView {
     ViewMethod mode() const { return mode_; }
     void set_mode(ViewMethod mode);  // the next draw() draws
     bool particle_mode() const { return mode_ != ViewMethod::kProjectedTetrahedra; }
+    // splat with vector splats: the frame of the texture cycle drawn next (headless: the
+    // frame's index; interactively draw() advances it kSplatCycleFps times a second).
+    void set_splat_frame(std::int64_t frame) { splat_frame_ = frame; }
+    bool splat_cycle() const {
+        return mode_ == ViewMethod::kSplat && !vs_.pbvr.splat.vectors.empty();
+    }
+    static constexpr double kSplatCycleFps = 8.0;
 
     // The particle-based picture of `camera` at width x height: asks the worker for this view
     // when it (or the method, scalar or transfer function) differs from the last one asked,
@@ -147,6 +155,7 @@ class VolumeView {
         ViewMethod method;
         Camera camera;
         int width, height, tf_version, scalar_version;
+        std::int64_t splat_frame;
         bool operator==(const ParticleKey& o) const;
     };
     std::optional<ParticleKey> pbvr_key_;
@@ -155,6 +164,8 @@ class VolumeView {
     std::shared_ptr<const std::vector<float>> pbvr_scalar_;
     int pbvr_tf_version_ = -1, pbvr_scalar_version_ = -1;
     std::optional<PbvrFrame> pbvr_shown_;
+    std::int64_t splat_frame_ = 0;
+    std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
     // The fused worker (several volumes), what it was last asked for, and the copies it draws
     // from (per volume; versions from fused_version_, increasing).
     std::unique_ptr<FusedWorker> fused_;

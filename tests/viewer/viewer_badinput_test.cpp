@@ -137,6 +137,7 @@ TEST(ViewerBadInput, EveryClassIsOneLineNoCrashNoHangNoPicture) {
         EXPECT_FALSE(run.err.empty());
         std::printf("%-28s exit %d: %s", c.name.c_str(), run.exit_code, run.err.c_str());
         EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+        EXPECT_EQ(run.err.rfind("tetrender-view: ", 0), 0u) << run.err;  // the program's name
         EXPECT_FALSE(std::filesystem::exists(out)) << run.err;
         std::filesystem::remove(out);
     }
