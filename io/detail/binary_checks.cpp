@@ -465,6 +465,14 @@ void check_ply(const fs::path& path) {
                 }
             }
             elements.back().properties.push_back(std::move(p));
+        } else if (line_number > 1 && key != "comment" && key != "obj_info") {
+            // Anything else (a blank line, an unknown keyword) VTK's header parser does not
+            // survive in every form (fuzz_surface: a header of OBJ lines, free of garbage in
+            // ply_close): refused.
+            fail(ErrorCode::kParse,
+                 key.empty() ? std::string("blank line in the PLY header")
+                             : "unknown PLY header keyword '" + one_line(key) + "'",
+                 at);
         }
     }
     // An element without properties: VTK's ply_close frees storage it never allocated

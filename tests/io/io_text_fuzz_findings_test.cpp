@@ -282,6 +282,15 @@ TEST(IoTextFuzzFindings, PlyHeaderEndsAtAnEndHeaderLine) {
                                       body);
     message = expect_error(read_surface(dir / "empty.ply"), dir / "empty.ply");
     EXPECT_NE(message.find("PLY element 'junk' has no properties"), std::string::npos) << message;
+    // Eighth run: a header full of OBJ lines (v, vn, f, garbage) made VTK free garbage in
+    // ply_close again. Header lines are format, element, property, comment, obj_info only.
+    write_file(dir / "obj.ply", "ply\nformat ascii 1.0\nv 0 0 1\n" +
+                                    head.substr(std::string("ply\nformat ascii 1.0\n").size()) +
+                                    "element face 1\nproperty list uchar int vertex_indices\n"
+                                    "end_header\n" +
+                                    body);
+    message = expect_error(read_surface(dir / "obj.ply"), dir / "obj.ply");
+    EXPECT_NE(message.find("unknown PLY header keyword 'v'"), std::string::npos) << message;
 }
 
 }  // namespace
