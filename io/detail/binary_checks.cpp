@@ -523,10 +523,19 @@ void check_ply(const fs::path& path) {
     };
 
     if (format == "ascii") {
-        // VTK reads ASCII lines as C strings: a NUL ends a line's words early, and the missing
-        // ones are read through a null pointer (strtod, SIGSEGV).
-        if (bytes.find('\0', body) != std::string::npos)
-            fail(ErrorCode::kParse, "binary data (a NUL byte) in an ASCII PLY body", where);
+        // VTK reads ASCII lines as C strings and splits them its own way: a NUL ends a line's
+        // words early, and a line of bytes beyond ASCII lost its words too (fuzz_surface); the
+        // missing ones are read through a null pointer (strtod, SIGSEGV). An ASCII body is
+        // numbers: printable ASCII and blanks only.
+        for (std::size_t k = body; k < bytes.size(); ++k) {
+            const auto c = static_cast<unsigned char>(bytes[k]);
+            if (c == 0 || c > 0x7e || (c < 0x20 && c != '\t' && c != '\n' && c != '\r')) {
+                fail(ErrorCode::kParse,
+                     c == 0 ? std::string("binary data (a NUL byte) in an ASCII PLY body")
+                            : "binary data (byte " + std::to_string(c) + ") in an ASCII PLY body",
+                     where);
+            }
+        }
         // One element instance per line: its token count must match the properties.
         std::size_t pos = body;
         for (const PlyElement& e : elements) {
