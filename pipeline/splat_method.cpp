@@ -89,6 +89,35 @@ Result<std::vector<float>> point_radii(const TetMesh& mesh, const std::string& n
     return radii;
 }
 
+// What scalar and vector splats' inputs share, from the picture.
+template <class Inputs>
+void fill_common(Inputs& in, std::span<const Vec3> points, std::span<const float> scalar,
+                 double spacing, const SplatPicture& picture) {
+    in.points = points;
+    in.scalar = scalar;
+    in.spacing = spacing;
+    in.tf = picture.tf;
+    in.camera = picture.camera;
+    in.background = picture.background;
+    if (picture.opaque && !picture.opaque->depth.empty()) {
+        in.opaque_color = &picture.opaque->color;
+        in.opaque_depth = &picture.opaque->depth;
+    }
+}
+
+// The stats both kinds of splats report.
+template <class Stats>
+void set_raster_stats(NamedStats& s, const Stats& stats, std::clock_t cpu, std::size_t points,
+                      double spacing) {
+    s.set("raster_ms", stats.raster_ms);
+    s.set("raster_cpu_ms", cpu_ms_since(cpu));
+    s.set("points", points);
+    s.set("splats_drawn", stats.splats_drawn);
+    s.set("fragments", stats.fragments);
+    s.set("method", std::string("splat"));
+    s.set("spacing", spacing);
+}
+
 class Splat final : public RenderMethod {
   public:
     std::string_view name() const override { return "splat"; }
@@ -257,8 +286,6 @@ Result<Image> render_splat_picture(const SplatPicture& picture, const SplatSetti
                           "one place); give the method key 'spacing'",
                           picture.where);
     }
-    const OpaqueLayer* layer = picture.opaque;
-    const bool opaque = layer && !layer->depth.empty();
     if (!settings.vectors.empty()) {
         TR_TRY(std::vector<Vec3> vectors, point_vectors(mesh, settings.vectors, picture.where));
         vectors.resize(count);
@@ -268,33 +295,18 @@ Result<Image> render_splat_picture(const SplatPicture& picture, const SplatSetti
         const int k = static_cast<int>(((settings.frame % n) + n) % n);
         const StreakTexture texture(texture_options);
         VectorSplatInputs in;
-        in.points = points;
-        in.scalar = scalar;
+        fill_common(in, points, scalar, spacing, picture);
         in.vectors = vectors;
-        in.spacing = spacing;
-        in.tf = picture.tf;
         in.texture = &texture;
-        in.camera = picture.camera;
         in.frame = k;
-        in.background = picture.background;
-        if (opaque) {
-            in.opaque_color = &layer->color;
-            in.opaque_depth = &layer->depth;
-        }
         VectorSplatStats stats;
         const std::clock_t cpu = std::clock();
         Image image = render_vector_splats(in, &stats);
-        s.set("raster_ms", stats.raster_ms);
-        s.set("raster_cpu_ms", cpu_ms_since(cpu));
-        s.set("points", points.size());
-        s.set("splats_drawn", stats.splats_drawn);
-        s.set("fragments", stats.fragments);
-        s.set("method", std::string("splat"));
+        set_raster_stats(s, stats, cpu, points.size(), spacing);
         s.set("vectors", settings.vectors);
         s.set("cycle", texture_options.cycle);
         s.set("frame", k);
         s.set("fastest", stats.fastest);
-        s.set("spacing", spacing);
         s.set("threads", thread_count());
         if (settings.kernel_given && notes) {
             notes->push_back("vector splats are textured with streaks: kernel ignored");
@@ -319,31 +331,16 @@ Result<Image> render_splat_picture(const SplatPicture& picture, const SplatSetti
     }
     const SplatFootprint footprint(settings.kernel);
     SplatInputs in;
+    fill_common(in, points, scalar, spacing, picture);
     in.radius = radii;
-    in.points = points;
-    in.scalar = scalar;
-    in.spacing = spacing;
-    in.tf = picture.tf;
     in.footprint = &footprint;
-    in.camera = picture.camera;
-    in.background = picture.background;
     in.compositing = settings.compositing;
-    if (opaque) {
-        in.opaque_color = &layer->color;
-        in.opaque_depth = &layer->depth;
-    }
     SplatStats stats;
     const std::clock_t cpu = std::clock();
     Image image = render_splats(in, &stats);
     s.set("scaled_by", scaled_by);
-    s.set("raster_ms", stats.raster_ms);
-    s.set("raster_cpu_ms", cpu_ms_since(cpu));
-    s.set("points", points.size());
-    s.set("splats_drawn", stats.splats_drawn);
-    s.set("fragments", stats.fragments);
-    s.set("method", std::string("splat"));
+    set_raster_stats(s, stats, cpu, points.size(), spacing);
     s.set("kernel", std::string(splat_kernel_name(settings.kernel)));
-    s.set("spacing", spacing);
     s.set("compositing",
           std::string(settings.compositing == SplatCompositing::kSheetBuffer ? "sheet-buffer"
                                                                              : "per-splat"));
