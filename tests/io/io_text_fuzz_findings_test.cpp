@@ -296,6 +296,16 @@ TEST(IoTextFuzzFindings, PlyHeaderEndsAtAnEndHeaderLine) {
                                     body);
     message = expect_error(read_surface(dir / "obj.ply"), dir / "obj.ply");
     EXPECT_NE(message.find("unknown PLY header keyword 'v'"), std::string::npos) << message;
+    // Tenth run: "property float \fy" was 'y' to the pre-check, not to VTK (SIGSEGV in
+    // vtkPLY::find_element). The header must be plain text.
+    write_file(dir / "ff.ply",
+               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+               "property float \fy\nproperty float z\nelement face 1\n"
+               "property list uchar int vertex_indices\nend_header\n" +
+                   body);
+    message = expect_error(read_surface(dir / "ff.ply"), dir / "ff.ply");
+    EXPECT_NE(message.find("binary data (byte 12) in the PLY header"), std::string::npos)
+        << message;
 }
 
 }  // namespace
