@@ -277,6 +277,14 @@ TEST(IoTextFuzzFindings, PlyHeaderEndsAtAnEndHeaderLine) {
                                       "vertex_indices\nend_header\n" +
                                       body);
     message = expect_error(read_surface(dir / "count.ply"), dir / "count.ply");
+    EXPECT_NE(message.find("binary data (byte 22) in the PLY header"), std::string::npos)
+        << message;
+    // A count that is text (read as 0 before) is refused as such.
+    write_file(dir / "word.ply", head +
+                                     "element face x\nproperty list uchar int "
+                                     "vertex_indices\nend_header\n" +
+                                     body);
+    message = expect_error(read_surface(dir / "word.ply"), dir / "word.ply");
     EXPECT_NE(message.find("bad element count"), std::string::npos) << message;
     // Sixth run: "element vertery_big_endian 1.0" (a garbled line) declared an element without
     // properties, whose storage VTK's ply_close freed without having allocated it.
