@@ -154,6 +154,11 @@ TEST(IoTextFuzzFindings, PlyAsciiLineShortOfProperties) {
                head + "0 0 0\n1 0 0\n" + std::string("0 1\0 0\n", 7) + "3 0 1 2\n");
     message = expect_error(read_surface(dir / "nul.ply"), dir / "nul.ply");
     EXPECT_NE(message.find("a NUL byte"), std::string::npos) << message;
+    // Eleventh run: a word that is not a number ("vertex_index0 1 1") parted VTK's words and
+    // ours the same way.
+    write_file(dir / "word.ply", head + "0 0 0\n1 0 0\nvertex_index0 1 0\n3 0 1 2\n");
+    message = expect_error(read_surface(dir / "word.ply"), dir / "word.ply");
+    EXPECT_NE(message.find("'vertex_index0' is not a number"), std::string::npos) << message;
     // Ninth run: bytes beyond ASCII inside a vertex line, the same read (VTK's words differ).
     write_file(dir / "high.ply", head + "0 0 0\n1 0 0\n0 1\xff\xff 0\n3 0 1 2\n");
     message = expect_error(read_surface(dir / "high.ply"), dir / "high.ply");
