@@ -637,6 +637,36 @@ void check_obj(const fs::path& path) {
             first = 0;
         } else {
             if (t.empty()) continue;
+            // Only the keywords VTK's reader knows, each a word of its own ("v0 0" is a vertex
+            // to VTK, which reads the command by letters, and not to a word count), and v, vt,
+            // vn lines of numbers: where VTK and this check would count differently, VTK
+            // dereferences what is not there (fuzz_surface).
+            static constexpr std::string_view kKeywords[] = {
+                "v", "vt", "vn", "vp", "f", "l", "p", "g", "o", "s", "usemtl", "mtllib"};
+            if (std::find(std::begin(kKeywords), std::end(kKeywords), t[0]) ==
+                std::end(kKeywords)) {
+                fail(ErrorCode::kParse, "OBJ: unknown keyword '" + std::string(t[0]) + "'", where);
+            }
+            const std::size_t numbers = t[0] == "v" || t[0] == "vn" ? 3 : t[0] == "vt" ? 2 : 0;
+            if (numbers > 0) {
+                if (t.size() < 1 + numbers) {
+                    fail(ErrorCode::kParse,
+                         "OBJ: '" + std::string(t[0]) + "' needs " + std::to_string(numbers) +
+                             " numbers",
+                         where);
+                }
+                for (std::size_t k = 1; k < t.size(); ++k) {
+                    double value = 0.0;
+                    const auto [end, ec] =
+                        std::from_chars(t[k].data(), t[k].data() + t[k].size(), value);
+                    if (ec != std::errc() || end != t[k].data() + t[k].size()) {
+                        fail(ErrorCode::kParse,
+                             "OBJ: bad number '" + std::string(t[k]) + "' in a '" +
+                                 std::string(t[0]) + "' line",
+                             where);
+                    }
+                }
+            }
             if (t[0] == "v") ++seen[0];
             if (t[0] == "vt") ++seen[1];
             if (t[0] == "vn") ++seen[2];
@@ -674,6 +704,13 @@ void check_obj(const fs::path& path) {
                 }
                 if (slash == std::string_view::npos) break;
                 rest = rest.substr(slash + 1);
+                // "1/" or "1/2/": a slash must be followed by an index ("1//3" is v//vn).
+                if (rest.empty()) {
+                    fail(ErrorCode::kParse,
+                         std::string("OBJ: bad index '") + std::string(t[k]) + "' in an '" +
+                             element + "' line",
+                         where);
+                }
             }
         }
     }

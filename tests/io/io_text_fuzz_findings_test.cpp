@@ -46,6 +46,13 @@ TEST(IoTextFuzzFindings, ObjIndicesOfMissingElementsAreErrors) {
         {"zero.obj", kTriangle + "f 0 1 2\n", "vertex 0"},
         {"token.obj", kTriangle + "f 1 2 x\n", "bad index 'x'"},
         {"line.obj", kTriangle + "vt 0 0\nl 1/1/1 2\n", "bad index '1/1/1' in an 'l' line"},
+        // fuzz_surface, twelfth run: "v0 0" is a vertex to VTK (it reads the command by
+        // letters), "f 1/ 1 1" a texture index to it: counts that parted from the check's,
+        // and VTK's null dereference again. Keywords, numbers and slashes are checked.
+        {"glued.obj", kTriangle + "v0 0\nf 1 2 3\n", "unknown keyword 'v0'"},
+        {"short.obj", kTriangle + "v 1 0\nf 1 2 3\n", "'v' needs 3 numbers"},
+        {"word.obj", kTriangle + "vn 0 x 1\nf 1 2 3\n", "bad number 'x' in a 'vn' line"},
+        {"slash.obj", kTriangle + "f 1/ 2 3\n", "bad index '1/' in an 'f' line"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
