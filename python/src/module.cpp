@@ -11,9 +11,12 @@
 #include <sort/order_verifier.h>
 
 #include <cstring>
+#include <flowtex/advect_frames.h>
+#include <flowtex/spot_noise_frames.h>
 #include <memory>
 #include <mutex>
 #include <pipeline/annotations.h>
+#include <pipeline/flow_volume_scene.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
 #include <pybind11/numpy.h>
@@ -297,6 +300,105 @@ PYBIND11_MODULE(_core, m) {
             },
             "what the split did (mesh/tetrahedralize.h TetrahedralizeReport)");
 
+    // Spot noise and texture advection (flowtex/): the frames of an in-memory tet mesh's
+    // steady flow, as `tetrender spotnoise` and `tetrender advect` write them.
+    const auto flow_frames = [](const TetHandle& mesh, const std::string& name,
+                                const std::string& vectors, bool as_float, const auto& run) {
+        std::vector<tr::Image> frames;
+        const auto collect = [&](int, const tr::Image& picture) -> tr::Status {
+            frames.push_back(picture);
+            return {};
+        };
+        auto report = [&]() -> decltype(run(std::declval<const tr::FlowDomain&>(),
+                                            std::declval<const tr::VelocityField&>(), collect)) {
+            py::gil_scoped_release release;
+            tr::Pipeline pipeline;
+            tr::SceneVolume volume;
+            volume.mesh = name;
+            volume.tets = mesh.mesh;
+            TR_TRY(const tr::FlowDomain domain, pipeline.flow_domain(volume));
+            TR_TRY(const tr::VelocityField velocity, tr::load_velocity(domain, vectors, false));
+            return run(domain, velocity, collect);
+        }();
+        auto made = unwrap(std::move(report));
+        py::list pictures;
+        for (const tr::Image& f : frames) pictures.append(image_array(f, as_float));
+        return std::make_pair(pictures, made);
+    };
+    m.def(
+        "spot_noise",
+        [flow_frames](const TetHandle& mesh, const std::string& name, const std::string& scalar,
+                      double iso, const std::string& vectors, int steps, std::size_t count,
+                      double dt, double band, int lifetime, int width, int height,
+                      std::uint64_t seed, bool as_float) {
+            tr::SpotNoiseFramesOptions options;
+            options.scalar = scalar;
+            options.spots.iso = iso;
+            options.spots.count = count;
+            options.spots.dt = dt;
+            options.spots.band = band;
+            options.spots.lifetime_frames = lifetime;
+            options.spots.seed = seed;
+            options.steps = steps;
+            options.width = width;
+            options.height = height;
+            auto [pictures, report] =
+                flow_frames(mesh, name, vectors, as_float,
+                            [&](const tr::FlowDomain& domain, const tr::VelocityField& velocity,
+                                const auto& collect) {
+                                return tr::spot_noise_frames(domain.mesh(), *domain.adjacency,
+                                                             velocity, options, collect);
+                            });
+            py::dict info;
+            info["band_tets"] = report.band_tets;
+            info["spots"] = report.spots;
+            info["band"] = report.band;
+            info["dt"] = report.dt;
+            info["mean_speed"] = report.mean_speed;
+            info["reseeded"] = report.reseeded;
+            return py::make_tuple(pictures, info);
+        },
+        py::arg("mesh"), py::arg("name"), py::arg("scalar"), py::arg("iso"), py::arg("vectors"),
+        py::arg("steps"), py::arg("count"), py::arg("dt"), py::arg("band"), py::arg("lifetime"),
+        py::arg("width"), py::arg("height"), py::arg("seed"), py::arg("as_float"),
+        "flowtex/spot_noise_frames.h spot_noise_frames");
+    m.def(
+        "advect",
+        [flow_frames](const TetHandle& mesh, const std::string& name, const std::string& vectors,
+                      std::optional<std::array<double, 3>> point,
+                      std::optional<std::array<double, 3>> normal, int steps, double dt,
+                      int resolution, const std::string& method, int width, int height,
+                      bool as_float) {
+            tr::AdvectFramesOptions options;
+            if (point) options.slice_point = tr::Vec3((*point)[0], (*point)[1], (*point)[2]);
+            if (normal) options.slice_normal = tr::Vec3((*normal)[0], (*normal)[1], (*normal)[2]);
+            options.steps = steps;
+            options.dt = dt;
+            options.sheet_resolution = resolution;
+            if (method == "forward") {
+                options.method = tr::AdvectionMethod::kForward;
+            } else if (method != "backward") {
+                bad_argument("method must be 'backward' or 'forward', not '" + method + "'");
+            }
+            options.width = width;
+            options.height = height;
+            auto [pictures, report] =
+                flow_frames(mesh, name, vectors, as_float,
+                            [&](const tr::FlowDomain& domain, const tr::VelocityField& velocity,
+                                const auto& collect) {
+                                return tr::advect_frames(domain.mesh(), *domain.adjacency, velocity,
+                                                         options, collect);
+                            });
+            py::dict info;
+            info["sheet_points"] = report.sheet_points;
+            info["sheet_triangles"] = report.sheet_triangles;
+            info["dt"] = report.dt;
+            info["mean_speed"] = report.mean_speed;
+            return py::make_tuple(pictures, info);
+        },
+        py::arg("mesh"), py::arg("name"), py::arg("vectors"), py::arg("point"), py::arg("normal"),
+        py::arg("steps"), py::arg("dt"), py::arg("resolution"), py::arg("method"), py::arg("width"),
+        py::arg("height"), py::arg("as_float"), "flowtex/advect_frames.h advect_frames");
     m.def(
         "set_max_memory", [](std::uint64_t bytes) { tr::set_memory_budget(bytes); },
         py::arg("bytes"), "core/memory_budget.h set_memory_budget (0: the default)");

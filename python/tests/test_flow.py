@@ -44,3 +44,37 @@ def test_flow_volume_errors_carry_the_library_message(ring):
         tetrender.flow_volume(scene_dict(mesh), "velocity", [5.0, 5.0, 5.0], [0.1, 0.1], **DYE)
     with pytest.raises(tetrender.Error, match=r"no 3-component point array 'temperature' \(vector arrays: velocity\)"):
         tetrender.flow_volume(scene_dict(mesh), "temperature", [0.1, 0.5, 0.17], [0.1, 0.1], **DYE)
+
+
+def test_spot_noise_and_advection_are_the_clis_frames(ring, cli, output_dir):
+    meshio.write(output_dir / "ring.vtu", meshio.Mesh(ring["points"], [("hexahedron", ring["hexahedra"])],
+                                                      point_data=ring["point_data"]))
+    mesh = tetrender.Mesh(ring["points"], ring["connectivity"], ring["offsets"], ring["types"],
+                          ring["point_data"])
+    size = ["--size", "64x48"]
+    result = run_cli(cli, "spotnoise", str(output_dir / "ring.vtu"), "--scalar", "temperature",
+                     "--iso", "0.5", "--vectors", "velocity", "--steps", "3", "--count", "500",
+                     *size, "--frames", str(output_dir / "spots"))
+    assert result.returncode == 0, result.stderr
+    frames, info = tetrender.spot_noise(mesh, "temperature", 0.5, "velocity", steps=3, count=500,
+                                        width=64, height=48)
+    assert len(frames) == 4 and frames[0].shape == (48, 64, 3) and frames[0].dtype == np.uint8
+    assert info["spots"] == 500 and info["dt"] > 0
+    for k, frame in enumerate(frames):
+        cli_frame = tetrender.read_image(output_dir / "spots" / f"frame_{k:04d}.png")
+        # Measured: identical bytes (the PNG's are the rounded floats).
+        assert np.array_equal(np.rint(cli_frame * 255).astype(np.uint8), frame), k
+    assert not np.array_equal(frames[0], frames[3])  # the spots move
+    result = run_cli(cli, "advect", str(output_dir / "ring.vtu"), "--vectors", "velocity",
+                     "--steps", "3", "--resolution", "32", *size, "--frames",
+                     str(output_dir / "advect"))
+    assert result.returncode == 0, result.stderr
+    frames, info = tetrender.advect(mesh, "velocity", steps=3, resolution=32, width=64, height=48)
+    assert len(frames) == 4 and info["sheet_points"] > 0
+    for k, frame in enumerate(frames):
+        cli_frame = tetrender.read_image(output_dir / "advect" / f"frame_{k:04d}.png")
+        assert np.array_equal(np.rint(cli_frame * 255).astype(np.uint8), frame), k
+    with pytest.raises(tetrender.Error, match="no 3-component point array 'temperature'"):
+        tetrender.spot_noise(mesh, "temperature", 0.5, "temperature")
+    with pytest.raises(tetrender.Error, match="method must be 'backward' or 'forward'"):
+        tetrender.advect(mesh, "velocity", method="sideways")

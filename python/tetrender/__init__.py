@@ -12,6 +12,7 @@ The library's entry points with numpy arrays in and out (docs/python.md):
 - ``render(scene, ...)`` -> an ``(H, W, 3)`` uint8 (or float32) array
 - ``sort(scene, ...)`` -> a visibility order, ``verify_order(scene, order)`` -> its check
 - ``flow_volume(scene, vectors, seed_center, seed_size, ...)`` -> the dye's picture and tets
+- ``spot_noise(mesh, scalar, iso, vectors, ...)``, ``advect(mesh, vectors, ...)`` -> frames
 - ``write_image(path, image)`` / ``read_image(path)``: PNG and PFM, as the CLI writes them
 - ``set_max_memory("8G")`` / ``max_memory()``: the CLI's ``--max-memory``
 
@@ -44,6 +45,8 @@ __all__ = [
     "sort",
     "verify_order",
     "flow_volume",
+    "spot_noise",
+    "advect",
     "write_image",
     "read_image",
     "set_max_memory",
@@ -576,6 +579,74 @@ def render(
     image, stats, notes, _ = _scene(scene)._handle.render(method or "", sort, integrator, as_float,
                                                           legend, bounding_box, axes)
     return (image, stats, notes) if return_stats else image
+
+
+def _flow_tets(mesh: Any) -> Any:
+    """The library's tets of a Mesh, meshio or PyVista-shaped object, or a path."""
+    if isinstance(mesh, (str, os.PathLike)):
+        mesh = read(mesh)
+    source = Mesh.from_any(mesh)
+    tets = source._tets if source._tets is not None and source._unchanged() else None
+    if tets is None:
+        tets = _core.tetrahedralize(source._library_mesh(), 0.0, True)
+    return tets, source.name
+
+
+def spot_noise(
+    mesh: Any,
+    scalar: str,
+    iso: float,
+    vectors: str,
+    steps: int = 30,
+    count: int = 20000,
+    dt: float = 0.0,
+    band: float = 0.0,
+    lifetime: int = 60,
+    width: int = 512,
+    height: int = 512,
+    seed: int = 0x5B07,
+    dtype: Any = np.uint8,
+) -> tuple[list[np.ndarray], dict]:
+    """Spot noise near the contour ``scalar = iso``, advected by the point array ``vectors``
+    (``tetrender spotnoise``, docs/flowtex.md): the ``steps + 1`` frames as ``(H, W, 3)``
+    arrays and a dict of what was chosen (band_tets, spots, band, dt, mean_speed, reseeded).
+
+    ``dt`` 0: the spots' mean speed carries a spot 1/400 of the mesh's diagonal a frame;
+    ``band`` 0: the diagonal / 100. Steady flow. The GIL is released meanwhile.
+    """
+    tets, name = _flow_tets(mesh)
+    as_float = np.dtype(dtype) == np.float32
+    frames, info = _core.spot_noise(tets, name, scalar, float(iso), vectors, int(steps),
+                                    int(count), float(dt), float(band), int(lifetime), int(width),
+                                    int(height), int(seed), as_float)
+    return list(frames), dict(info)
+
+
+def advect(
+    mesh: Any,
+    vectors: str,
+    point: Any = None,
+    normal: Any = None,
+    steps: int = 30,
+    dt: float = 0.0,
+    resolution: int = 256,
+    method: str = "backward",
+    width: int = 512,
+    height: int = 512,
+    dtype: Any = np.uint8,
+) -> tuple[list[np.ndarray], dict]:
+    """Texture advection over the slice through ``point`` with ``normal`` (default: the bounds'
+    centre, across their thinnest axis) by the point array ``vectors`` (``tetrender advect``,
+    docs/flowtex.md): the ``steps + 1`` frames and a dict (sheet_points, sheet_triangles, dt,
+    mean_speed). ``method``: "backward" or "forward". Steady flow; the GIL is released.
+    """
+    tets, name = _flow_tets(mesh)
+    as_float = np.dtype(dtype) == np.float32
+    as_triple = (lambda v: None if v is None else tuple(float(c) for c in v))
+    frames, info = _core.advect(tets, name, vectors, as_triple(point), as_triple(normal),
+                                int(steps), float(dt), int(resolution), method, int(width),
+                                int(height), as_float)
+    return list(frames), dict(info)
 
 
 def flow_volume(
