@@ -307,6 +307,16 @@ TEST(IoTextFuzzFindings, PlyHeaderEndsAtAnEndHeaderLine) {
                                       body);
     message = expect_error(read_surface(dir / "empty.ply"), dir / "empty.ply");
     EXPECT_NE(message.find("PLY element 'junk' has no properties"), std::string::npos) << message;
+    // Fifteenth run: an element between the vertices and the faces, which VTK's reader does not
+    // skip: it read the faces from that element's data (SIGSEGV in vtkCell::Initialize).
+    write_file(dir / "between.ply",
+               head +
+                   "element extra 1\nproperty float w\nelement face 1\n"
+                   "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n"
+                   "0 1 0\n7\n3 0 1 2\n");
+    message = expect_error(read_surface(dir / "between.ply"), dir / "between.ply");
+    EXPECT_NE(message.find("PLY element 'extra' before the vertices or faces"), std::string::npos)
+        << message;
     // Eighth run: a header full of OBJ lines (v, vn, f, garbage) made VTK free garbage in
     // ply_close again. Header lines are format, element, property, comment, obj_info only.
     write_file(dir / "obj.ply", "ply\nformat ascii 1.0\nv 0 0 1\n" +
