@@ -633,5 +633,23 @@ TEST(IoFuzzFindings, ShortStringsWithAPercentAreAnError) {
     EXPECT_EQ(ok.value().points.size(), 8u);
 }
 
+// fuzz_legacy_vtk, ninth run: a 462-byte BINARY grid whose FIELD string array holds a value with
+// an 8-byte length (first byte < 0x40) of 0x00000003xxxxxxxx: VTK 9.1 reads it big-endian whole
+// and allocated 12 GB for it (libFuzzer: out of memory; VTK alone reached 23 GB, killed), while
+// the pre-check had read it with only 4 bytes swapped (as older VTK did), a length of 3. Now
+// "truncated file: FIELD array s has 0 of 1 strings".
+TEST(IoFuzzFindings, BinaryStringLengthIsReadWhole) {
+    TempDir dir;
+    const auto path = dir / "strings.vtk";
+    std::string text =
+        "# vtk DataFile Version 4.2\nt\nBINARY\nDATASET STRUCTURED_GRID\nFIELD fd 1\n"
+        "s 1 1 string\n";
+    text += std::string("\0\0\0\x03\0\0\0\0", 8) + "abc\n";
+    write_file(path, text);
+    const std::string message = expect_error(read_mesh(path), path);
+    EXPECT_NE(message.find("truncated file: FIELD array s has 0 of 1 strings"), std::string::npos)
+        << message;
+}
+
 }  // namespace
 }  // namespace tr
