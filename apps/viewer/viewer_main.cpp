@@ -1,6 +1,7 @@
 // tetrender-view: the interactive viewer (GLFW window, OpenGL 3.3 core, Dear ImGui panel), and
 // its headless screenshot mode for tests and benchmarks. This file: the command line and the
 // start-up (display, GL context, ImGui); the rest of the viewer is in its neighbours.
+#include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/quick_look_args.h>
 #include <apps/viewer/headless_orbit.h>
@@ -326,7 +327,7 @@ int main(int argc, char** argv) {
     app.add_option("--screenshot", args.screenshot,
                    "Headless: render --frames frames, write the last (.png or .pfm), exit");
     app.add_option("--frames", args.frames, "Headless: frames along the orbit (default 1)")
-        ->check(CLI::Range(1, 100000));
+        ->check(tr::apps::in_range(1, 100000));
     app.add_option("--orbit", args.orbit,
                    "Headless: degrees the camera turns about the scene's up axis (view_up) over "
                    "the frames, without rolling");
@@ -346,18 +347,18 @@ int main(int argc, char** argv) {
                    "Splat: textured vector splats along this 3-component point array, their "
                    "texture cycle playing (headless: frame i of --frames draws cycle frame i)");
     app.add_option("--cycle", args.cycle, "Splat: textures in the vector splats' cycle (default 8)")
-        ->check(CLI::Range(1, tr::kMaxSplatCycle));
+        ->check(tr::apps::in_range(1, tr::kMaxSplatCycle));
     app.add_option("--repetitions", args.repetitions,
                    "Particle-based: repetitions to accumulate (default: the scene's, else 64 "
                    "headless, 1024 interactively)")
-        ->check(CLI::Range(1, tr::viewer::kMaxRepetitions));
+        ->check(tr::apps::in_range(1, tr::viewer::kMaxRepetitions));
     app.add_option("--seed", args.seed,
                    "Particle-based: the seed (batch b of a view uses seed + b; default: the "
                    "scene's, else 1)");
     app.add_option("--batch", args.batch,
                    "Particle-based: repetitions per batch (default 16 for pbvr-image, 4 for "
                    "pbvr-object)")
-        ->check(CLI::Range(1, tr::viewer::kMaxBatch));
+        ->check(tr::apps::in_range(1, tr::viewer::kMaxBatch));
     app.add_option("--colormap", args.colormap,
                    "viridis, coolwarm, inferno, gray or a ParaView preset name (default: the "
                    "scene's colours, or viridis)");
@@ -365,17 +366,17 @@ int main(int argc, char** argv) {
            "--opacity", args.opacity,
            "Largest opacity: a mesh's ramp's top (default 0.5, as `tetrender render`), or a "
            "scene's opacity points scaled to it")
-        ->check(CLI::Range(0.0, 0.999));
+        ->check(tr::apps::in_range(0.0, 0.999));
     app.add_option("--max-memory", args.max_memory,
                    "The most memory to take, e.g. 8G: a mesh that would need more is refused up "
                    "front (default: 80% of this machine's memory)");
     app.add_option("--time-step", args.time_step, "Mesh mode: the time step to read (default 0)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(tr::apps::kNonNegativeInteger);
     tr::apps::add_quick_look_options(app, args.quick, false, "Mesh mode: ");
     app.add_option("--unit-distance", args.unit_distance,
                    "Unit distance of the opacities (default: the scene's, or for a mesh the "
                    "quick look's: a typical ray through the object reaches opacity 0.8)")
-        ->check(CLI::PositiveNumber);
+        ->check(tr::apps::kPositive);
     auto* vectors = app.add_option("--flowvol-vectors", args.flowvol_vectors,
                                    "Flow volume: grow the dye through this 3-component point "
                                    "array (replaces a scene's flow_volume)");
@@ -388,7 +389,7 @@ int main(int argc, char** argv) {
         app.add_option("--seed-size", args.seed_size, "Flow volume: dye polygon width,height")
             ->expected(2)
             ->delimiter(',')
-            ->check(CLI::PositiveNumber)
+            ->check(tr::apps::kPositive)
             ->needs(vectors);
     vectors->needs(center)->needs(size);
     app.add_option("--seed-normal", args.seed_normal,
@@ -398,13 +399,13 @@ int main(int argc, char** argv) {
         ->needs(vectors);
     app.add_option("--seed-res", args.flow.seed_resolution,
                    "Flow volume: quads per side of the polygon (default 32)")
-        ->check(CLI::Range(1, 4096))
+        ->check(tr::apps::in_range(1, 4096))
         ->needs(vectors);
     app.add_option("--steps", args.flow.steps, "Flow volume: layers (default 50)")
-        ->check(CLI::Range(1, 100000))
+        ->check(tr::apps::in_range(1, 100000))
         ->needs(vectors);
     app.add_option("--dt", args.flow.dt, "Flow volume: time per layer (default 0.05)")
-        ->check(CLI::PositiveNumber)
+        ->check(tr::apps::kPositive)
         ->needs(vectors);
     app.add_option("--split-threshold", args.flow.split_threshold,
                    "Flow volume: split front edges longer than this many seed spacings "
@@ -424,8 +425,16 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
         args.quick_given = tr::apps::quick_look_options_given(app);
         if (app.count("--time-step") > 0) args.quick_given.push_back("--time-step");
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e) == 0 ? 0 : tr::apps::kExitUsage;
+        // One line (CLI11's own exit() adds "Run with --help for more information.").
+        std::fprintf(stderr, "tetrender-view: %s\n", e.what());
+        return tr::apps::kExitUsage;
     }
     try {
         return tr::viewer::run(args);

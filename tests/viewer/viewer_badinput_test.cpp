@@ -124,6 +124,9 @@ TEST(ViewerBadInput, EveryClassIsOneLineNoCrashNoHangNoPicture) {
         {"--range with a scene", shell_quote(t.scene) + " --range 0,1"},
         {"vectors that are a scalar", mesh + " --flowvol-vectors blob --seed-center 0,0,0 "
                                              "--seed-size 0.5,0.5"},
+        {"--unit-distance 0", mesh + " --unit-distance 0"},
+        {"--opacity 2", mesh + " --opacity 2"},
+        {"--time-step 1.5", mesh + " --time-step 1.5"},
         {"--integrator exact", mesh + " --integrator exact"},
         {"--method nope", mesh + " --method nope"},
     };
@@ -138,6 +141,7 @@ TEST(ViewerBadInput, EveryClassIsOneLineNoCrashNoHangNoPicture) {
         std::printf("%-28s exit %d: %s", c.name.c_str(), run.exit_code, run.err.c_str());
         EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
         EXPECT_EQ(run.err.rfind("tetrender-view: ", 0), 0u) << run.err;  // the program's name
+        EXPECT_LT(run.err.size(), 300u) << run.err;  // no 309-digit bound (DBL_MAX) printed
         EXPECT_FALSE(std::filesystem::exists(out)) << run.err;
         std::filesystem::remove(out);
     }
