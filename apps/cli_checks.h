@@ -5,10 +5,13 @@
 // DBL_MAX's 309 digits (issue 13). With these, CLI11 prints "tetrender: --dt: must be a finite
 // number > 0, not '0'".
 
+#include <apps/cli_common.h>
+
 #include <CLI/CLI.hpp>
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <type_traits>
 
@@ -87,6 +90,26 @@ CLI::Validator in_range(T lo, T hi) {
                    ", not '" + text + "'";
         },
         (integer ? "INT in [" : "FLOAT in [") + text_of(lo) + " - " + text_of(hi) + "]");
+}
+
+// Parses the command line. --help and --version print CLI11's text; a bad command line prints
+// one line "<program>: <what is wrong>" (CLI11's own exit() adds "Run with --help for more
+// information."). Returns the exit code to end with, or nothing when the program goes on.
+inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv,
+                                             const char* program) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "%s: %s\n", program, e.what());
+        return kExitUsage;
+    }
+    return std::nullopt;
 }
 
 }  // namespace tr::apps

@@ -1,4 +1,5 @@
 // The tetrender command line: one subcommand per job; exit codes in apps/cli_common.h.
+#include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
 #include <core/config.h>
@@ -92,19 +93,7 @@ int main(int argc, char** argv) {
             return kExitUsage;
         }
     }
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForVersion& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        // One line (CLI11's own exit() adds "Run with --help for more information.").
-        std::fprintf(stderr, "tetrender: %s\n", e.what());
-        return kExitUsage;
-    }
+    if (const auto code = parse_command_line(app, argc, argv, "tetrender")) return *code;
     if (!max_memory.empty()) {
         const auto budget = tr::parse_byte_size(max_memory);
         if (!budget.ok()) {

@@ -421,21 +421,11 @@ int main(int argc, char** argv) {
     app.add_option("--exit-after-frames", args.exit_after_frames,
                    "Interactive mode: quit after N frames and any flow volume grown (for tests)")
         ->group("");
-    try {
-        app.parse(argc, argv);
-        args.quick_given = tr::apps::quick_look_options_given(app);
-        if (app.count("--time-step") > 0) args.quick_given.push_back("--time-step");
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForVersion& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        // One line (CLI11's own exit() adds "Run with --help for more information.").
-        std::fprintf(stderr, "tetrender-view: %s\n", e.what());
-        return tr::apps::kExitUsage;
+    if (const auto code = tr::apps::parse_command_line(app, argc, argv, "tetrender-view")) {
+        return *code;
     }
+    args.quick_given = tr::apps::quick_look_options_given(app);
+    if (app.count("--time-step") > 0) args.quick_given.push_back("--time-step");
     try {
         return tr::viewer::run(args);
     } catch (const std::exception& e) {

@@ -476,18 +476,14 @@ class Scene:
         opacity span the 1st to 99th percentile, the unit distance brings a typical ray through
         the object to opacity 0.8 and the camera fits the object's projected extent from
         ``view`` turned by ``azimuth`` and ``elevation``; ``look="classic"`` is the scene before
-        2026-11; ``log=True`` is ``--log`` (colours over log10 of the positive range). The legend is the CLI's annotation: ``render(..., legend=True)`` draws it.
+        2026-11; ``log=True`` is ``--log`` (colours over log10 of the positive range). The
+        legend is the CLI's annotation: ``render(..., legend=True)`` draws it.
         """
-        if isinstance(mesh, (str, os.PathLike)):
-            mesh = read(mesh)
-        source = Mesh.from_any(mesh)
-        tets = source._tets if source._tets is not None and source._unchanged() else None
-        if tets is None:
-            tets = _core.tetrahedralize(source._library_mesh(), 0.0, True)
+        tets, name = _library_tets(mesh)
         scene = cls.__new__(cls)
         scene._meshes = [tets]
         scene._handle = _core.quick_scene(
-            tets, source.name, scalar, -1 if component is None else int(component), int(width),
+            tets, name, scalar, -1 if component is None else int(component), int(width),
             int(height), view, colormap, look=look,
             range=None if range is None else (float(range[0]), float(range[1])),
             opacity=None if opacity is None else float(opacity),
@@ -581,7 +577,7 @@ def render(
     return (image, stats, notes) if return_stats else image
 
 
-def _flow_tets(mesh: Any) -> Any:
+def _library_tets(mesh: Any) -> Any:
     """The library's tets of a Mesh, meshio or PyVista-shaped object, or a path."""
     if isinstance(mesh, (str, os.PathLike)):
         mesh = read(mesh)
@@ -614,7 +610,7 @@ def spot_noise(
     ``dt`` 0: the spots' mean speed carries a spot 1/400 of the mesh's diagonal a frame;
     ``band`` 0: the diagonal / 100. Steady flow. The GIL is released meanwhile.
     """
-    tets, name = _flow_tets(mesh)
+    tets, name = _library_tets(mesh)
     as_float = np.dtype(dtype) == np.float32
     frames, info = _core.spot_noise(tets, name, scalar, float(iso), vectors, int(steps),
                                     int(count), float(dt), float(band), int(lifetime), int(width),
@@ -640,7 +636,7 @@ def advect(
     docs/flowtex.md): the ``steps + 1`` frames and a dict (sheet_points, sheet_triangles, dt,
     mean_speed). ``method``: "backward" or "forward". Steady flow; the GIL is released.
     """
-    tets, name = _flow_tets(mesh)
+    tets, name = _library_tets(mesh)
     as_float = np.dtype(dtype) == np.float32
     as_triple = (lambda v: None if v is None else tuple(float(c) for c in v))
     frames, info = _core.advect(tets, name, vectors, as_triple(point), as_triple(normal),
