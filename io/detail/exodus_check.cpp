@@ -1,13 +1,15 @@
 // Exodus II contents checked through netCDF before VTK's reader sees them: VTK indexes its
 // point arrays with the connectivity it reads and trusts every count, so an element id past
 // the node count crashes it (or, one past the end, reads garbage). Every variable VTK reads by
-// index is checked here: block connectivity (and polyhedral/n-sided counts), side sets, node
-// sets, and the shapes of coordinates, maps and result variables.
+// index is checked here: block connectivity (n-sided counts; polyhedra: their face lists and
+// the face blocks' nodes), side sets, node sets, and the shapes of coordinates, maps and result
+// variables.
 
 #include <io/detail/common.h>
 #include <io/detail/readers.h>
 
 #include <algorithm>
+#include <cctype>
 #include <netcdf.h>
 #include <optional>
 #include <vector>
@@ -65,6 +67,17 @@ class NetcdfFile {
         std::size_t n = 1;
         for (int d : var_dims(var_id)) n *= dim_length(d);
         return n;
+    }
+    // A text attribute of a variable, upper-cased; empty when it has none (or is not text).
+    std::string upper_text_attribute(int var_id, const char* name) const {
+        nc_type type = NC_NAT;
+        std::size_t n = 0;
+        if (nc_inq_att(id_, var_id, name, &type, &n) != NC_NOERR || type != NC_CHAR) return {};
+        std::string text(std::min<std::size_t>(n, 256), '\0');
+        if (n > text.size()) return {};  // no element type is that long
+        check(nc_get_att_text(id_, var_id, name, text.data()), "attribute");
+        for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+        return text;
     }
     bool is_integer(int var_id) const {
         nc_type type = NC_NAT;
@@ -153,15 +166,143 @@ void expect_ids_in_range(const NetcdfFile& file, const std::string& var_name,
     });
 }
 
+// `counts_name` holds one count per entity (each in [min_count, what is left]) of the list
+// `list_name`, whose length (the dimension `list_dim`) they must sum to exactly: VTK walks the
+// list by these counts without checking either. `owner` ("element block 1") and `entity`
+// ("element", "face") and `items` ("nodes", "faces") name them in the message.
+void expect_counts_cover_list(const NetcdfFile& file, const std::string& owner,
+                              const std::string& counts_name, const std::string& count_dim,
+                              const std::string& list_name, const std::string& list_dim,
+                              const std::string& entity, const std::string& items,
+                              long long min_count) {
+    const std::optional<int> counts = file.var(counts_name);
+    const std::optional<int> list = file.var(list_name);
+    if (!counts || !list) {
+        fail(ErrorCode::kParse,
+             "Exodus II " + owner + " needs both '" + list_name + "' and '" + counts_name + "'",
+             file.where());
+    }
+    expect_shape(file, *counts, counts_name, {count_dim});
+    expect_shape(file, *list, list_name, {list_dim});
+    const std::size_t length = file.length(list_dim);
+    std::size_t sum = 0;
+    file.for_each_value(*counts, counts_name, [&](std::size_t i, long long v) {
+        if (v < min_count || static_cast<unsigned long long>(v) > length - sum) {
+            fail(ErrorCode::kParse,
+                 "Exodus II " + owner + " (" + counts_name + "): " + entity + " " +
+                     std::to_string(i + 1) + " has " + std::to_string(v) + " " + items +
+                     (v < min_count ? " (at least " + std::to_string(min_count) + " needed)"
+                                    : ", but its list (" + list_name + ") has " +
+                                          std::to_string(length - sum) + " entries left"),
+                 file.where());
+        }
+        sum += static_cast<std::size_t>(v);
+    });
+    if (sum != length) {
+        fail(ErrorCode::kParse,
+             "Exodus II " + owner + " (" + counts_name + "): " + entity + " " + items +
+                 " counts sum to " + std::to_string(sum) + ", its list (" + list_name + ") has " +
+                 std::to_string(length) + " entries",
+             file.where());
+    }
+}
+
+// Every value of the list `list_name` refers to an item (node, face) in 1..limit; `owner`
+// names the block, `limit_what` the limit in the message.
+void expect_refs_in_range(const NetcdfFile& file, const std::string& owner,
+                          const std::string& list_name, const std::string& item, std::size_t limit,
+                          const std::string& limit_what) {
+    const std::optional<int> list = file.var(list_name);
+    if (!list) return;
+    file.for_each_value(*list, list_name, [&](std::size_t i, long long v) {
+        if (v < 1 || static_cast<unsigned long long>(v) > limit) {
+            fail(ErrorCode::kParse,
+                 "Exodus II " + owner + " (" + list_name + "): entry " + std::to_string(i + 1) +
+                     " refers to " + item + " " + std::to_string(v) + ", outside 1.." +
+                     std::to_string(limit) + " (" + limit_what + ")",
+                 file.where());
+        }
+    });
+}
+
+// Face blocks (`fbconn<k>`): the faces polyhedral elements are made of. An NSIDED block lists
+// each face's node count in `fbepecnt<k>`; any other has `num_nod_per_fa<k>` nodes a face. Every
+// node id within the file's node count. Returns the number of faces of each block.
+std::vector<std::size_t> check_face_blocks(const NetcdfFile& file, std::size_t num_nodes) {
+    std::vector<std::size_t> faces;
+    const std::size_t num_face_blocks = file.length("num_fa_blk");
+    for (std::size_t k = 1; k <= num_face_blocks; ++k) {
+        const std::string n = std::to_string(k);
+        const std::string owner = "face block " + n;
+        const std::string conn_name = "fbconn" + n;
+        const std::size_t num_faces = file.length("num_fa_in_blk" + n);
+        faces.push_back(num_faces);
+        const std::optional<int> conn = file.var(conn_name);
+        if (!conn) {
+            if (num_faces > 0) {
+                fail(ErrorCode::kParse,
+                     "Exodus II " + owner + " has " + std::to_string(num_faces) +
+                         " faces but no connectivity ('" + conn_name + "')",
+                     file.where());
+            }
+            continue;
+        }
+        if (file.var("fbepecnt" + n)) {
+            // NSIDED: a face has at least 3 nodes.
+            expect_counts_cover_list(file, owner, "fbepecnt" + n, "num_fa_in_blk" + n, conn_name,
+                                     "num_nod_per_fa" + n, "face", "nodes", 3);
+        } else {
+            expect_shape(file, *conn, conn_name, {"num_fa_in_blk" + n, "num_nod_per_fa" + n});
+        }
+        expect_refs_in_range(file, owner, conn_name, "node", num_nodes, "the file's node count");
+    }
+    return faces;
+}
+
+// A polyhedral (NFACED) element block `b`: `ebepecnt<b>` gives each element's face count (at
+// least 4), summing to the length of `facconn<b>`, whose face ids lie in the file's faces. VTK
+// 9.1 finds a face's block with an off-by-one (the first face of every face block after the
+// first is looked up past the end of the block before it), and it reads only NSIDED face blocks
+// for polyhedra, so polyhedra must take their faces from one NSIDED face block.
+void check_polyhedral_block(const NetcdfFile& file, std::size_t b,
+                            const std::vector<std::size_t>& face_blocks) {
+    const std::string n = std::to_string(b);
+    const std::string owner = "element block " + n;
+    if (face_blocks.size() != 1 || !file.var("fbepecnt1")) {
+        fail(ErrorCode::kUnsupported,
+             "Exodus II " + owner + " is polyhedral (NFACED) but the file has " +
+                 std::to_string(face_blocks.size()) +
+                 " face blocks: tetrender (through VTK 9.1) reads polyhedra whose faces are one "
+                 "NSIDED face block",
+             file.where());
+    }
+    expect_counts_cover_list(file, owner, "ebepecnt" + n, "num_el_in_blk" + n, "facconn" + n,
+                             "num_fac_per_el" + n, "element", "faces", 4);
+    expect_refs_in_range(file, owner, "facconn" + n, "face", face_blocks[0],
+                         "the faces of face block 1");
+}
+
 // Block `b` (1-based): its connectivity refers to nodes 1..num_nodes, its shape matches its
 // counts; returns its element count.
-std::size_t check_block(const NetcdfFile& file, std::size_t b, std::size_t num_nodes) {
+std::size_t check_block(const NetcdfFile& file, std::size_t b, std::size_t num_nodes,
+                        const std::vector<std::size_t>& face_blocks) {
     const std::string n = std::to_string(b);
     const std::string conn_name = "connect" + n;
     const std::string block = "element block " + n;
     const std::optional<int> conn = file.var(conn_name);
     const std::size_t num_elems = file.length("num_el_in_blk" + n);
     if (!conn) {
+        // Polyhedra list faces (facconn<b>), not nodes.
+        if (const std::optional<int> faces = file.var("facconn" + n)) {
+            if (file.upper_text_attribute(*faces, "elem_type").rfind("NFACED", 0) != 0) {
+                fail(ErrorCode::kParse,
+                     "Exodus II " + block + " has faces ('facconn" + n +
+                         "') but no node connectivity ('" + conn_name + "') and is not NFACED",
+                     file.where());
+            }
+            check_polyhedral_block(file, b, face_blocks);
+            return num_elems;
+        }
         if (num_elems > 0) {
             fail(ErrorCode::kParse,
                  "Exodus II " + block + " has " + std::to_string(num_elems) +
@@ -170,30 +311,10 @@ std::size_t check_block(const NetcdfFile& file, std::size_t b, std::size_t num_n
         }
         return 0;
     }
-    if (const std::optional<int> counts = file.var("ebepecnt" + n)) {
-        // N-sided / polyhedral block: one node count per element, summing to the list length.
-        expect_shape(file, *counts, "ebepecnt" + n, {"num_el_in_blk" + n});
-        expect_shape(file, *conn, conn_name, {"num_nod_per_el" + n});
-        const std::size_t list = file.length("num_nod_per_el" + n);
-        std::size_t sum = 0;
-        file.for_each_value(*counts, "ebepecnt" + n, [&](std::size_t i, long long v) {
-            if (v < 1 || static_cast<unsigned long long>(v) > list - sum) {
-                fail(ErrorCode::kParse,
-                     "Exodus II " + block + ": element " + std::to_string(i) + " has " +
-                         std::to_string(v) + " nodes, but its list has " +
-                         std::to_string(list - sum) + " entries left",
-                     file.where());
-            }
-            sum += static_cast<std::size_t>(v);
-        });
-        if (sum != list) {
-            fail(ErrorCode::kParse,
-                 "Exodus II " + block + ": element node counts sum to " + std::to_string(sum) +
-                     ", its connectivity has " + std::to_string(list) + " entries",
-                 file.where());
-        }
-    } else if (file.var("fbepecnt" + n)) {
-        return num_elems;  // polyhedra: the connectivity lists faces, not nodes; not checked
+    if (file.var("ebepecnt" + n)) {
+        // N-sided block: one node count per element, summing to the list length.
+        expect_counts_cover_list(file, block, "ebepecnt" + n, "num_el_in_blk" + n, conn_name,
+                                 "num_nod_per_el" + n, "element", "nodes", 1);
     } else {
         expect_shape(file, *conn, conn_name, {"num_el_in_blk" + n, "num_nod_per_el" + n});
     }
@@ -234,9 +355,10 @@ void check_exodus_contents(const fs::path& path) {
         if (const std::optional<int> v = file.var(map)) expect_shape(file, *v, map, {"num_elem"});
     }
 
+    const std::vector<std::size_t> face_blocks = check_face_blocks(file, num_nodes);
     std::size_t total = 0;
     for (std::size_t b = 1; b <= num_blocks; ++b) {
-        const std::size_t n = check_block(file, b, num_nodes);
+        const std::size_t n = check_block(file, b, num_nodes, face_blocks);
         if (n > num_elem - std::min(total, num_elem)) {
             fail(ErrorCode::kParse,
                  "Exodus II element blocks hold more elements than num_elem (" +

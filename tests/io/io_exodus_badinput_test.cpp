@@ -2,7 +2,8 @@
 // element id past the node count crashes it; one just past the end reads garbage). The files
 // are written here with the netCDF library, in the classic and the netCDF-4 (HDF5) formats,
 // from a valid two-tet mesh that reads correctly; each corruption must be a one-line error
-// naming the file, the block or set and the bad id.
+// naming the file, the block or set and the bad id. Polyhedral (NFACED) blocks and their face
+// blocks too.
 
 #include <io/read_mesh.h>
 #include <tests/io/io_test_util.h>
@@ -205,6 +206,198 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
             c.corrupt(spec);
             const fs::path path = dir / (c.name + "_" + format.name + ".exo");
             write_exodus(path, spec, format.flags);
+            const std::string message = expect_error(read_mesh(path), path);
+            EXPECT_NE(message.find(c.message_part), std::string::npos) << message;
+        }
+    }
+}
+
+// Two unit cubes side by side as polyhedra (NFACED), as the Exodus library writes them
+// (ex_put_block "nfaced" over an "nsided" face block, measured with ncdump-like listing of its
+// output): face block 1 lists 11 quads by their nodes (fbconn1, counts in fbepecnt1), element
+// block 1 lists each cube's 6 faces (facconn1, counts in ebepecnt1; cube 2 shares face 2).
+struct PolyhedralSpec {
+    std::vector<int> face_nodes = {1,  4,  3, 2, 2,  3,  7, 6, 5,  6, 7, 8,  1,  2, 6,
+                                   5,  3,  4, 8, 7,  1,  5, 8, 4,  2, 9, 10, 3,  9, 11,
+                                   12, 10, 6, 7, 12, 11, 2, 6, 11, 9, 3, 10, 12, 7};
+    std::vector<int> nodes_per_face = std::vector<int>(11, 4);
+    std::vector<int> element_faces = {1, 2, 3, 4, 5, 6, 2, 7, 8, 9, 10, 11};
+    std::vector<int> faces_per_element = {6, 6};
+    std::string element_type = "nfaced";
+    int num_face_blocks = 1;  // a second one (a copy of the first) when 2
+};
+
+void write_polyhedral_exodus(const fs::path& path, const PolyhedralSpec& spec, int format) {
+    int f = -1;
+    nc(nc_create(path.c_str(), NC_CLOBBER | format, &f), "create");
+    const auto dim = [&](const std::string& name, std::size_t n) {
+        int id = -1;
+        nc(nc_def_dim(f, name.c_str(), n, &id), name.c_str());
+        return id;
+    };
+    const auto var = [&](const std::string& name, nc_type type, std::vector<int> dims) {
+        int id = -1;
+        nc(nc_def_var(f, name.c_str(), type, static_cast<int>(dims.size()), dims.data(), &id),
+           name.c_str());
+        return id;
+    };
+    const auto text = [&](int v, const char* name, const std::string& value) {
+        nc(nc_put_att_text(f, v, name, value.size(), value.c_str()), name);
+    };
+    const float api = 8.03f;
+    const int word_size = 8, file_size = 1, name_length = 32;
+    nc(nc_put_att_float(f, NC_GLOBAL, "api_version", NC_FLOAT, 1, &api), "att");
+    nc(nc_put_att_float(f, NC_GLOBAL, "version", NC_FLOAT, 1, &api), "att");
+    nc(nc_put_att_int(f, NC_GLOBAL, "floating_point_word_size", NC_INT, 1, &word_size), "att");
+    nc(nc_put_att_int(f, NC_GLOBAL, "file_size", NC_INT, 1, &file_size), "att");
+    nc(nc_put_att_int(f, NC_GLOBAL, "maximum_name_length", NC_INT, 1, &name_length), "att");
+    text(NC_GLOBAL, "title", "poly");
+    const std::size_t num_faces = spec.nodes_per_face.size();
+    const int d_len_name = dim("len_name", 33);
+    const int d_time = dim("time_step", NC_UNLIMITED);
+    const int d_num_dim = dim("num_dim", 3);
+    const int d_nodes = dim("num_nodes", 12);
+    dim("num_elem", spec.faces_per_element.size());
+    dim("num_face", num_faces * static_cast<std::size_t>(spec.num_face_blocks));
+    const int d_blocks = dim("num_el_blk", 1);
+    const int d_face_blocks = dim("num_fa_blk", static_cast<std::size_t>(spec.num_face_blocks));
+    std::vector<int> d_fa_in_blk, d_nod_per_fa;
+    for (int k = 1; k <= spec.num_face_blocks; ++k) {
+        d_fa_in_blk.push_back(dim("num_fa_in_blk" + std::to_string(k), num_faces));
+        d_nod_per_fa.push_back(dim("num_nod_per_fa" + std::to_string(k), spec.face_nodes.size()));
+    }
+    const int d_in_blk = dim("num_el_in_blk1", spec.faces_per_element.size());
+    const int d_fac_per_el = dim("num_fac_per_el1", spec.element_faces.size());
+    const int v_time = var("time_whole", NC_DOUBLE, {d_time});
+    const int v_eb_status = var("eb_status", NC_INT, {d_blocks});
+    const int v_eb_prop = var("eb_prop1", NC_INT, {d_blocks});
+    text(v_eb_prop, "name", "ID");
+    const int v_fa_status = var("fa_status", NC_INT, {d_face_blocks});
+    const int v_fa_prop = var("fa_prop1", NC_INT, {d_face_blocks});
+    text(v_fa_prop, "name", "ID");
+    const int v_x = var("coordx", NC_DOUBLE, {d_nodes});
+    const int v_y = var("coordy", NC_DOUBLE, {d_nodes});
+    const int v_z = var("coordz", NC_DOUBLE, {d_nodes});
+    const int v_eb_names = var("eb_names", NC_CHAR, {d_blocks, d_len_name});
+    const int v_coor_names = var("coor_names", NC_CHAR, {d_num_dim, d_len_name});
+    std::vector<int> v_fbconn, v_fbepecnt;
+    for (int k = 1; k <= spec.num_face_blocks; ++k) {
+        const std::string n = std::to_string(k);
+        v_fbconn.push_back(var("fbconn" + n, NC_INT, {d_nod_per_fa[k - 1]}));
+        text(v_fbconn.back(), "elem_type", "nsided");
+        v_fbepecnt.push_back(var("fbepecnt" + n, NC_INT, {d_fa_in_blk[k - 1]}));
+        text(v_fbepecnt.back(), "entity_type1", "NODE");
+        text(v_fbepecnt.back(), "entity_type2", "FACE");
+    }
+    const int v_facconn = var("facconn1", NC_INT, {d_fac_per_el});
+    text(v_facconn, "elem_type", spec.element_type);
+    const int v_ebepecnt = var("ebepecnt1", NC_INT, {d_in_blk});
+    text(v_ebepecnt, "entity_type1", "FACE");
+    text(v_ebepecnt, "entity_type2", "ELEM");
+    nc(nc_enddef(f), "enddef");
+
+    const double t0 = 0.0;
+    const std::size_t zero = 0;
+    nc(nc_put_var1_double(f, v_time, &zero, &t0), "time");
+    const int one = 1;
+    const std::vector<int> ids = {10, 20};
+    nc(nc_put_var_int(f, v_eb_status, &one), "eb_status");
+    nc(nc_put_var_int(f, v_eb_prop, &one), "eb_prop1");
+    const std::vector<int> ones(static_cast<std::size_t>(spec.num_face_blocks), 1);
+    nc(nc_put_var_int(f, v_fa_status, ones.data()), "fa_status");
+    nc(nc_put_var_int(f, v_fa_prop, ids.data()), "fa_prop1");
+    const double x[12] = {0, 1, 1, 0, 0, 1, 1, 0, 2, 2, 2, 2};
+    const double y[12] = {0, 0, 1, 1, 0, 0, 1, 1, 0, 1, 0, 1};
+    const double z[12] = {0, 0, 0, 0, 1, 1, 1, 1, 0, 0, 1, 1};
+    nc(nc_put_var_double(f, v_x, x), "coordx");
+    nc(nc_put_var_double(f, v_y, y), "coordy");
+    nc(nc_put_var_double(f, v_z, z), "coordz");
+    std::vector<char> names(3 * 33, '\0');
+    names[0] = 'x';
+    names[33] = 'y';
+    names[66] = 'z';
+    nc(nc_put_var_text(f, v_coor_names, names.data()), "coor_names");
+    std::vector<char> block_name(33, '\0');
+    std::memcpy(block_name.data(), "cells", 5);
+    nc(nc_put_var_text(f, v_eb_names, block_name.data()), "eb_names");
+    for (int k = 0; k < spec.num_face_blocks; ++k) {
+        nc(nc_put_var_int(f, v_fbconn[k], spec.face_nodes.data()), "fbconn");
+        nc(nc_put_var_int(f, v_fbepecnt[k], spec.nodes_per_face.data()), "fbepecnt");
+    }
+    nc(nc_put_var_int(f, v_facconn, spec.element_faces.data()), "facconn1");
+    nc(nc_put_var_int(f, v_ebepecnt, spec.faces_per_element.data()), "ebepecnt1");
+    nc(nc_close(f), "close");
+}
+
+// Polyhedral (NFACED) blocks: their faces' node lists were not checked at all, and the block
+// (which has no connect1) was refused as "element block 1 has 2 elements but no connectivity".
+// VTK 9.1 reads them (InsertBlockPolyhedra), trusting every count and face id: now the face
+// counts must cover facconn1 exactly (at least 4 a polyhedron), every face id lie in the face
+// block, every face block's node counts cover fbconn1 (at least 3 a face) and its node ids lie
+// in the file's nodes. The valid file reads as two polyhedra (VTK type 42). Measured with VTK's
+// own reader (Python vtkExodusIIReader, files from the Exodus library): a face id one past the
+// end (12 of 11) segfaults it (exit 139); 1000000 gives a face of -1 nodes and a warning; a face
+// node count past its list, an element face count past its list and node 13000000 in a face are
+// read silently (exit 0, bounds unchanged).
+TEST(BadInputExodus, PolyhedralBlocksAreChecked) {
+    TempDir dir;
+    for (const Format& format : kFormats) {
+        SCOPED_TRACE(format.name);
+        const fs::path path = dir / (std::string("poly_") + format.name + ".exo");
+        write_polyhedral_exodus(path, PolyhedralSpec{}, format.flags);
+        auto r = read_mesh(path);
+        ASSERT_TRUE(r.ok()) << r.error().to_string();
+        EXPECT_EQ(r.value().points.size(), 12u);
+        ASSERT_EQ(r.value().num_cells(), 2u);
+        for (const CellType type : r.value().types) EXPECT_EQ(static_cast<int>(type), 42);
+    }
+    struct Case {
+        std::string name;
+        std::function<void(PolyhedralSpec&)> corrupt;
+        std::string message_part;
+    };
+    const std::vector<Case> cases = {
+        {"face_id_past_end", [](PolyhedralSpec& s) { s.element_faces[11] = 12; },
+         "element block 1 (facconn1): entry 12 refers to face 12, outside 1..11 (the faces of "
+         "face block 1)"},
+        {"face_id_far_past_end", [](PolyhedralSpec& s) { s.element_faces[3] = 1000000; },
+         "entry 4 refers to face 1000000"},
+        {"face_id_zero", [](PolyhedralSpec& s) { s.element_faces[0] = 0; }, "refers to face 0"},
+        {"face_count_past_list", [](PolyhedralSpec& s) { s.faces_per_element[1] = 7; },
+         "element block 1 (ebepecnt1): element 2 has 7 faces, but its list (facconn1) has 6 "
+         "entries left"},
+        {"face_counts_short_of_list", [](PolyhedralSpec& s) { s.faces_per_element[1] = 5; },
+         "element faces counts sum to 11, its list (facconn1) has 12 entries"},
+        {"three_faces",
+         [](PolyhedralSpec& s) {
+             s.faces_per_element = {3, 9};
+         },
+         "element 1 has 3 faces (at least 4 needed)"},
+        {"face_node_past_end", [](PolyhedralSpec& s) { s.face_nodes[43] = 13; },
+         "face block 1 (fbconn1): entry 44 refers to node 13, outside 1..12 (the file's node "
+         "count)"},
+        {"face_node_negative", [](PolyhedralSpec& s) { s.face_nodes[5] = -3; },
+         "refers to node -3"},
+        {"node_count_past_list", [](PolyhedralSpec& s) { s.nodes_per_face[10] = 5; },
+         "face block 1 (fbepecnt1): face 11 has 5 nodes, but its list (fbconn1) has 4 entries "
+         "left"},
+        {"node_counts_short_of_list", [](PolyhedralSpec& s) { s.nodes_per_face[0] = 3; },
+         "face nodes counts sum to 43, its list (fbconn1) has 44 entries"},
+        {"two_node_face", [](PolyhedralSpec& s) { s.nodes_per_face[0] = 2; },
+         "face 1 has 2 nodes (at least 3 needed)"},
+        {"two_face_blocks", [](PolyhedralSpec& s) { s.num_face_blocks = 2; },
+         "element block 1 is polyhedral (NFACED) but the file has 2 face blocks"},
+        {"faces_but_not_nfaced", [](PolyhedralSpec& s) { s.element_type = "HEX8"; },
+         "element block 1 has faces ('facconn1') but no node connectivity ('connect1') and is "
+         "not NFACED"},
+    };
+    for (const Format& format : kFormats) {
+        for (const Case& c : cases) {
+            SCOPED_TRACE(std::string(format.name) + " " + c.name);
+            PolyhedralSpec spec;
+            c.corrupt(spec);
+            const fs::path path = dir / (c.name + "_" + format.name + ".exo");
+            write_polyhedral_exodus(path, spec, format.flags);
             const std::string message = expect_error(read_mesh(path), path);
             EXPECT_NE(message.find(c.message_part), std::string::npos) << message;
         }
