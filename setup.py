@@ -45,6 +45,10 @@ class CMakeBuild(build_ext):
         target = Path(self.get_ext_fullpath(ext.name))
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.copy2(built[0], target)
+        # TetGen runs in a program of its own, looked for next to the module (README: Licences).
+        worker = build / "mesh" / "copyleft" / "tetrender-tetgen-worker"
+        if worker.exists():
+            shutil.copy2(worker, target.parent / worker.name)
 
 
 EGG_BASE.mkdir(parents=True, exist_ok=True)

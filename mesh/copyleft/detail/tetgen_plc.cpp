@@ -1,7 +1,8 @@
-// The only translation unit that includes TetGen (built with TETLIBRARY: failures throw).
+// The library's side of a TetGen call: the request goes to the worker program
+// (tetgen_worker_main.cpp, the only code that includes tetgen.h) over a socket, the mesh comes
+// back on it.
 #include <mesh/copyleft/detail/tetgen_plc.h>
-
-#include <tetgen.h>
+#include <mesh/copyleft/detail/tetgen_wire.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -13,88 +14,21 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <exception>
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <limits>
-#include <mutex>
 #include <new>
 #include <poll.h>
-#include <pthread.h>
+#include <spawn.h>
 #include <string>
-#include <sys/prctl.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
 
+extern char** environ;
+
 namespace tr::detail {
-namespace {
-
-// tetgenio frees its arrays with delete[] in its destructor, so fill it with new[].
-int* new_polygon(tetgenio::polygon& polygon, std::size_t num_vertices) {
-    polygon.numberofvertices = static_cast<int>(num_vertices);
-    polygon.vertexlist = new int[num_vertices];
-    return polygon.vertexlist;
-}
-
-tetgenio::facet& init_facet(tetgenio::facet& facet, int num_polygons) {
-    tetgenio::init(&facet);
-    facet.numberofpolygons = num_polygons;
-    facet.polygonlist = new tetgenio::polygon[static_cast<std::size_t>(num_polygons)];
-    for (int i = 0; i < num_polygons; ++i) tetgenio::init(&facet.polygonlist[i]);
-    return facet;
-}
-
-REAL* new_points(const std::vector<Vec3>& points) {
-    REAL* out = new REAL[points.size() * 3];
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        out[3 * i + 0] = points[i].x;
-        out[3 * i + 1] = points[i].y;
-        out[3 * i + 2] = points[i].z;
-    }
-    return out;
-}
-
-void fill_input(const TetgenPlc& plc, tetgenio& in) {
-    in.firstnumber = 0;
-    in.numberofpoints = static_cast<int>(plc.points.size());
-    in.pointlist = new_points(plc.points);
-    const std::size_t num_facets = plc.triangles.size() + plc.quads.size() + plc.facets.size();
-    in.numberoffacets = static_cast<int>(num_facets);
-    in.facetlist = new tetgenio::facet[num_facets];
-    // Initialize every facet first: the destructor walks all numberoffacets of them.
-    for (std::size_t f = 0; f < num_facets; ++f) tetgenio::init(&in.facetlist[f]);
-    std::size_t f = 0;
-    for (const auto& tri : plc.triangles) {
-        tetgenio::facet& facet = init_facet(in.facetlist[f++], 1);
-        int* v = new_polygon(facet.polygonlist[0], 3);
-        for (int k = 0; k < 3; ++k) v[k] = static_cast<int>(tri[k]);
-    }
-    for (const auto& quad : plc.quads) {
-        tetgenio::facet& facet = init_facet(in.facetlist[f++], 1);
-        int* v = new_polygon(facet.polygonlist[0], 4);
-        for (int k = 0; k < 4; ++k) v[k] = static_cast<int>(quad[k]);
-    }
-    for (const TetgenFacet& general : plc.facets) {
-        tetgenio::facet& facet =
-            init_facet(in.facetlist[f++], static_cast<int>(general.polygons.size()));
-        for (std::size_t p = 0; p < general.polygons.size(); ++p) {
-            int* v = new_polygon(facet.polygonlist[p], general.polygons[p].size());
-            for (std::size_t k = 0; k < general.polygons[p].size(); ++k) {
-                v[k] = static_cast<int>(general.polygons[p][k]);
-            }
-        }
-        if (!general.holes.empty()) {
-            facet.numberofholes = static_cast<int>(general.holes.size());
-            facet.holelist = new_points(general.holes);
-        }
-    }
-    if (!plc.holes.empty()) {
-        in.numberofholes = static_cast<int>(plc.holes.size());
-        in.holelist = new_points(plc.holes);
-    }
-}
-
-}  // namespace
 
 std::string tetgen_number(double value) {
     const int magnitude = value > 0 ? static_cast<int>(std::floor(std::log10(value))) : 0;
@@ -131,181 +65,85 @@ std::string tetgen_error_message(int code) {
 
 namespace {
 
-// What the TetGen call produced, as it travels from the child process (see run_tetgen).
-enum class Outcome : std::int32_t {
-    kOk,
-    kTetgenError,  // TetGen threw an int: `code`
-    kOutOfMemory,
-    kException,  // another exception: the message follows
-    kBadSwitches,
-    kBadOutput,  // a tet with an index out of range
-};
-
-struct MessageHeader {
-    Outcome outcome = Outcome::kOk;
-    std::int32_t code = 0;
-    std::uint64_t num_points = 0;
-    std::uint64_t num_tets = 0;
-    std::uint64_t text_size = 0;
-};
-
-struct Message {
-    MessageHeader header;
-    std::string text;
-    TetgenResult result;
-};
-
-// Calls TetGen. Its failures throw an int after TetGen has freed its memory; in Debian's 1.5.0
-// unwinding through tetrahedralize() then destroys its tetgenmesh a second time and crashes.
-// So this runs in a child process (run_tetgen), on a thread with no handler anywhere on its
-// stack: an exception then finds no handler in the search phase, and the C++ runtime calls
-// std::terminate without unwinding anything; on_terminate reads the exception and reports it.
-Message call_tetgen_unguarded(const TetgenPlc& plc, const std::string& switches) {
-    Message message;
-    tetgenio in;
-    tetgenio out;
-    fill_input(plc, in);
-    std::string command = switches + "z";
-    std::vector<char> buffer(command.begin(), command.end());
-    buffer.push_back('\0');
-    tetgenbehavior behavior;
-    if (!behavior.parse_commandline(buffer.data())) {
-        message.header.outcome = Outcome::kBadSwitches;
-        return message;
-    }
-    tetrahedralize(&behavior, &in, &out);
-
-    TetgenResult& result = message.result;
-    result.points.resize(static_cast<std::size_t>(out.numberofpoints));
-    for (std::size_t i = 0; i < result.points.size(); ++i) {
-        result.points[i] =
-            Vec3(out.pointlist[3 * i], out.pointlist[3 * i + 1], out.pointlist[3 * i + 2]);
-    }
-    const std::size_t corners = static_cast<std::size_t>(out.numberofcorners);
-    result.tets.resize(static_cast<std::size_t>(out.numberoftetrahedra));
-    for (std::size_t t = 0; t < result.tets.size(); ++t) {
-        for (std::size_t k = 0; k < 4; ++k) {
-            const int p = out.tetrahedronlist[t * corners + k];
-            if (p < 0 || p >= out.numberofpoints) {
-                message.header.outcome = Outcome::kBadOutput;
-                message.result = {};
-                return message;
-            }
-            result.tets[t][k] = static_cast<PointId>(p);
-        }
-    }
-    return message;
-}
-
-Result<TetgenResult> to_result(Message message) {
-    switch (message.header.outcome) {
-        case Outcome::kOk:
-            return std::move(message.result);
-        case Outcome::kTetgenError: {
-            const int code = message.header.code;
+Result<TetgenResult> to_result(TetgenAnswer answer) {
+    switch (answer.outcome) {
+        case TetgenOutcome::kOk:
+            return std::move(answer.result);
+        case TetgenOutcome::kTetgenError: {
+            const int code = answer.code;
             return make_error(code == 1 || code == 2 ? ErrorCode::kInternal
                               : code == 10           ? ErrorCode::kInvalidArgument
                                                      : ErrorCode::kInvalidMesh,
                               tetgen_error_message(code));
         }
-        case Outcome::kOutOfMemory:
+        case TetgenOutcome::kOutOfMemory:
             return make_error(ErrorCode::kInternal, tetgen_error_message(1));
-        case Outcome::kBadSwitches:
+        case TetgenOutcome::kBadSwitches:
             return make_error(ErrorCode::kInvalidArgument, "TetGen rejected its switches");
-        case Outcome::kBadOutput:
+        case TetgenOutcome::kBadOutput:
             return make_error(ErrorCode::kInternal,
                               "TetGen returned a tet with a point index out of range");
-        case Outcome::kException:
+        case TetgenOutcome::kException:
             break;
     }
-    return make_error(ErrorCode::kInternal, "TetGen failed: " + message.text);
+    return make_error(ErrorCode::kInternal, "TetGen failed: " + answer.text);
 }
 
-bool write_all(int fd, const void* data, std::size_t size) {
-    const char* p = static_cast<const char*>(data);
-    while (size > 0) {
-        const ssize_t n = ::write(fd, p, size);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) return false;
-        p += n;
-        size -= static_cast<std::size_t>(n);
+std::string errno_text(const char* what) {
+    return std::string(what) + " failed: " + std::strerror(errno);
+}
+
+bool is_executable_file(const std::string& path) {
+    return !path.empty() && ::access(path.c_str(), X_OK) == 0 &&
+           ::access((path + "/.").c_str(), F_OK) != 0;  // not a directory
+}
+
+std::string folder_of(const std::string& path) {
+    const std::size_t slash = path.rfind('/');
+    return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
+}
+
+// Where the worker may be, in order: next to the running program (tetrender, the tests), next to
+// the shared object holding this code (the Python module's package), the build tree's, the
+// installed one.
+std::vector<std::string> worker_candidates() {
+    std::vector<std::string> candidates;
+    std::vector<char> self(4096);
+    const ssize_t n = ::readlink("/proc/self/exe", self.data(), self.size() - 1);
+    if (n > 0) {
+        candidates.push_back(folder_of(std::string(self.data(), static_cast<std::size_t>(n))) +
+                             "/" + kTetgenWorkerName);
+    }
+    Dl_info info{};
+    if (::dladdr(reinterpret_cast<void*>(&tetgen_worker_path), &info) != 0 && info.dli_fname &&
+        std::strstr(info.dli_fname, ".so")) {
+        candidates.push_back(folder_of(info.dli_fname) + "/" + kTetgenWorkerName);
+    }
+    candidates.emplace_back(TETRENDER_TETGEN_WORKER_BUILD_PATH);
+    candidates.emplace_back(TETRENDER_TETGEN_WORKER_INSTALL_PATH);
+    return candidates;
+}
+
+// Writes all of `bytes` to `fd`, or fails at `deadline` or when the other end is gone.
+bool send_all(int fd, const std::vector<char>& bytes,
+              std::chrono::steady_clock::time_point deadline, bool& timed_out) {
+    std::size_t at = 0;
+    while (at < bytes.size()) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0) return !(timed_out = true);
+        pollfd p{fd, POLLOUT, 0};
+        const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+        if (ready < 0 && errno == EINTR) continue;
+        if (ready < 0) return false;
+        if (ready == 0) continue;
+        const ssize_t sent =
+            ::send(fd, bytes.data() + at, bytes.size() - at, MSG_NOSIGNAL | MSG_DONTWAIT);
+        if (sent < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+        if (sent <= 0) return false;
+        at += static_cast<std::size_t>(sent);
     }
     return true;
-}
-
-[[noreturn]] void send_message(int fd, Message& message) {
-    message.header.num_points = message.result.points.size();
-    message.header.num_tets = message.result.tets.size();
-    message.header.text_size = message.text.size();
-    const bool ok =
-        write_all(fd, &message.header, sizeof(message.header)) &&
-        write_all(fd, message.text.data(), message.text.size()) &&
-        write_all(fd, message.result.points.data(), message.result.points.size() * sizeof(Vec3)) &&
-        write_all(fd, message.result.tets.data(), message.result.tets.size() * sizeof(Tet));
-    ::_exit(ok ? 0 : 1);  // no destructors, no atexit handlers, no flush of inherited buffers
-}
-
-// The child process's job (globals are fine there: the child does nothing else).
-struct ChildJob {
-    const TetgenPlc* plc = nullptr;
-    const std::string* switches = nullptr;
-    int fd = -1;
-};
-ChildJob g_child_job;
-
-// std::terminate handler of the child: the exception TetGen's thread did not catch.
-[[noreturn]] void on_terminate() {
-    Message message;
-    message.header.outcome = Outcome::kException;
-    message.text = "unknown exception";
-    if (std::exception_ptr e = std::current_exception()) {
-        try {
-            std::rethrow_exception(e);
-        } catch (int code) {
-            message.header.outcome = Outcome::kTetgenError;
-            message.header.code = code;
-        } catch (const std::bad_alloc&) {
-            message.header.outcome = Outcome::kOutOfMemory;
-        } catch (const std::exception& x) {
-            message.text = x.what();
-        } catch (...) {
-        }
-    }
-    send_message(g_child_job.fd, message);
-}
-
-void* tetgen_thread(void*) {
-    Message message = call_tetgen_unguarded(*g_child_job.plc, *g_child_job.switches);
-    send_message(g_child_job.fd, message);
-}
-
-[[noreturn]] void child_main(int fd, const TetgenPlc& plc, const std::string& switches) {
-    // TetGen prints even with -Q; the library must not.
-    const int null_fd = ::open("/dev/null", O_WRONLY);
-    if (null_fd >= 0) {
-        ::dup2(null_fd, STDOUT_FILENO);
-        ::dup2(null_fd, STDERR_FILENO);
-    }
-    // Close every other inherited descriptor, in particular the write ends of pipes that
-    // concurrent run_tetgen calls in other threads of the parent are reading to their end.
-    const unsigned first_other = STDERR_FILENO + 1;
-    const auto own = static_cast<unsigned>(fd);
-    if (own > first_other) ::close_range(first_other, own - 1, 0);
-    ::close_range(own + 1, ~0u, 0);
-    g_child_job = {&plc, &switches, fd};
-    std::set_terminate(on_terminate);
-    pthread_attr_t attributes;
-    pthread_attr_init(&attributes);
-    pthread_attr_setstacksize(&attributes, std::size_t{256} << 20);  // TetGen recurses
-    pthread_t thread;
-    if (pthread_create(&thread, &attributes, tetgen_thread, nullptr) != 0) {
-        Message message;
-        message.header.outcome = Outcome::kException;
-        message.text = "could not start a thread for TetGen";
-        send_message(fd, message);
-    }
-    pthread_join(thread, nullptr);  // tetgen_thread ends the process
-    ::_exit(1);
 }
 
 enum class ReadOutcome { kDone, kFailed, kTimedOut };
@@ -323,47 +161,60 @@ ReadOutcome read_all(int fd, std::vector<char>& bytes,
         if (ready < 0 && errno == EINTR) continue;
         if (ready < 0) return ReadOutcome::kFailed;
         if (ready == 0) continue;  // the deadline is checked above
-        const ssize_t n = ::read(fd, buffer, sizeof(buffer));
-        if (n < 0 && errno == EINTR) continue;
+        const ssize_t n = ::recv(fd, buffer, sizeof(buffer), MSG_DONTWAIT);
+        if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+        // The worker closed its end without reading all of the request: that is its end too.
+        if (n == 0 || (n < 0 && errno == ECONNRESET)) return ReadOutcome::kDone;
         if (n < 0) return ReadOutcome::kFailed;
-        if (n == 0) return ReadOutcome::kDone;
         bytes.insert(bytes.end(), buffer, buffer + n);
     }
 }
 
-// Parses what the child sent; an error when it is incomplete.
-Result<Message> parse_message(const std::vector<char>& bytes) {
-    Message message;
-    auto incomplete = [] {
-        return make_error(ErrorCode::kInternal, "TetGen's process ended without a full answer");
-    };
-    if (bytes.size() < sizeof(MessageHeader)) return incomplete();
-    std::memcpy(&message.header, bytes.data(), sizeof(MessageHeader));
-    const MessageHeader& h = message.header;
-    const std::uint64_t expected = sizeof(MessageHeader) + h.text_size +
-                                   h.num_points * sizeof(Vec3) + h.num_tets * sizeof(Tet);
-    if (h.text_size > bytes.size() || h.num_points > bytes.size() || h.num_tets > bytes.size() ||
-        bytes.size() != expected) {
-        return incomplete();
+// Starts the worker with `socket` as its descriptor 3, stdin from and stdout/stderr to /dev/null
+// (TetGen prints even with -Q) and nothing else inherited.
+Result<pid_t> spawn_worker(const std::string& path, int socket) {
+    posix_spawn_file_actions_t actions;
+    if (posix_spawn_file_actions_init(&actions) != 0) {
+        return make_error(ErrorCode::kIo, "could not prepare TetGen's process");
     }
-    const char* p = bytes.data() + sizeof(MessageHeader);
-    message.text.assign(p, h.text_size);
-    p += h.text_size;
-    message.result.points.resize(h.num_points);
-    if (h.num_points > 0) {
-        std::memcpy(message.result.points.data(), p, h.num_points * sizeof(Vec3));
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_adddup2(&actions, socket, 3);  // clears close-on-exec, even if 3
+    posix_spawn_file_actions_addclosefrom_np(&actions, 4);
+    const std::string parent = std::to_string(::getpid());
+    std::vector<char*> argv = {const_cast<char*>(path.c_str()), const_cast<char*>("--parent"),
+                               const_cast<char*>(parent.c_str()), nullptr};
+    pid_t pid = 0;
+    const int failed = posix_spawn(&pid, path.c_str(), &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (failed != 0) {
+        return make_error(ErrorCode::kIo,
+                          "could not start TetGen's worker " + path + ": " + std::strerror(failed));
     }
-    p += h.num_points * sizeof(Vec3);
-    message.result.tets.resize(h.num_tets);
-    if (h.num_tets > 0) std::memcpy(message.result.tets.data(), p, h.num_tets * sizeof(Tet));
-    return message;
-}
-
-std::string errno_text(const char* what) {
-    return std::string(what) + " failed: " + std::strerror(errno);
+    return pid;
 }
 
 }  // namespace
+
+Result<std::string> tetgen_worker_path() {
+    if (const char* chosen = std::getenv("TETRENDER_TETGEN_WORKER"); chosen && *chosen) {
+        if (is_executable_file(chosen)) return std::string(chosen);
+        return make_error(ErrorCode::kNotFound, std::string("TETRENDER_TETGEN_WORKER=") + chosen +
+                                                    ": not an executable file");
+    }
+    const std::vector<std::string> candidates = worker_candidates();
+    for (const std::string& candidate : candidates) {
+        if (is_executable_file(candidate)) return candidate;
+    }
+    std::string looked;
+    for (const std::string& candidate : candidates) {
+        looked += (looked.empty() ? "" : ", ") + candidate;
+    }
+    return make_error(ErrorCode::kNotFound, std::string("TetGen's worker program ") +
+                                                kTetgenWorkerName + " was not found (looked at " +
+                                                looked + "; set TETRENDER_TETGEN_WORKER to it)");
+}
 
 double tetgen_time_limit(const TetgenPlc& plc) {
     if (const char* text = std::getenv("TETRENDER_TETGEN_TIME_LIMIT")) {
@@ -383,45 +234,52 @@ Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switche
         plc.triangles.size() + plc.quads.size() + plc.facets.size() >= max_int) {
         return make_error(ErrorCode::kInvalidArgument, "input too large for TetGen");
     }
-    // TetGen runs in a child process so that its failures cannot take this one down (see
-    // call_tetgen); the child sends the mesh back through a pipe. One call at a time: fewer
-    // threads of ours are allocating while another forks (see tetgen_plc.h).
-    static std::mutex one_at_a_time;
-    const std::lock_guard<std::mutex> lock(one_at_a_time);
+    TR_TRY(const std::string worker, tetgen_worker_path());
+    std::vector<char> request;
+    try {
+        request = encode_request(TetgenRequest{switches, plc});
+    } catch (const std::bad_alloc&) {
+        return make_error(ErrorCode::kInternal, "out of memory preparing TetGen's input");
+    }
     int fds[2];
-    if (::pipe2(fds, O_CLOEXEC) != 0) return make_error(ErrorCode::kIo, errno_text("pipe"));
-    const pid_t parent = ::getpid();
-    const pid_t pid = ::fork();
-    if (pid < 0) {
-        ::close(fds[0]);
-        ::close(fds[1]);
-        return make_error(ErrorCode::kIo, errno_text("fork for TetGen"));
+    if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0) {
+        return make_error(ErrorCode::kIo, errno_text("socketpair for TetGen"));
     }
-    if (pid == 0) {
-        // The child dies with its parent (killed, crashed): TetGen must never run on alone.
-        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-        if (::getppid() != parent) ::_exit(1);  // the parent died before prctl
-        ::close(fds[0]);
-        child_main(fds[1], plc, switches);
-    }
+    auto spawned = spawn_worker(worker, fds[1]);
     ::close(fds[1]);
+    if (!spawned.ok()) {
+        ::close(fds[0]);
+        return spawned.error();
+    }
+    const pid_t pid = *spawned;
     const auto deadline =
         std::chrono::steady_clock::now() +
         std::chrono::milliseconds(static_cast<long long>(std::min(time_limit, 1e9) * 1000.0));
+    bool timed_out = false;
     std::vector<char> bytes;
-    Result<TetgenResult> result = make_error(ErrorCode::kInternal, "TetGen did not run");
+    std::string read_error;
+    ErrorCode read_error_code = ErrorCode::kIo;
     ReadOutcome read = ReadOutcome::kFailed;
-    try {
-        read = read_all(fds[0], bytes, deadline);
-    } catch (const std::bad_alloc&) {
-        result = make_error(ErrorCode::kInternal, "out of memory reading TetGen's mesh");
+    // A worker that died early makes the send fail; what it said, if anything, is read anyway.
+    send_all(fds[0], request, deadline, timed_out);
+    request = {};
+    if (!timed_out) {
+        ::shutdown(fds[0], SHUT_WR);  // the end of the request
+        try {
+            read = read_all(fds[0], bytes, deadline);
+            if (read == ReadOutcome::kFailed) read_error = errno_text("reading TetGen's answer");
+        } catch (const std::bad_alloc&) {
+            read_error = "out of memory reading TetGen's mesh";
+            read_error_code = ErrorCode::kInternal;
+        }
     }
     ::close(fds[0]);
-    if (read == ReadOutcome::kTimedOut) ::kill(pid, SIGKILL);
+    timed_out = timed_out || read == ReadOutcome::kTimedOut;
+    if (timed_out) ::kill(pid, SIGKILL);
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
-    if (read == ReadOutcome::kTimedOut) {
+    if (timed_out) {
         char seconds[32];
         std::snprintf(seconds, sizeof(seconds), "%g", time_limit);
         return make_error(ErrorCode::kUnsupported,
@@ -429,16 +287,14 @@ Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switche
                               " s and was stopped (set TETRENDER_TETGEN_TIME_LIMIT, in seconds, "
                               "for a larger job)");
     }
-    const bool read_ok = read == ReadOutcome::kDone;
     if (WIFSIGNALED(status)) {
         return make_error(ErrorCode::kInternal, "TetGen crashed (signal " +
                                                     std::to_string(WTERMSIG(status)) + ": " +
                                                     ::strsignal(WTERMSIG(status)) + ")");
     }
-    if (!read_ok) return result.ok() ? make_error(ErrorCode::kIo, errno_text("read")) : result;
-    auto message = parse_message(bytes);
-    if (!message.ok()) return message.error();
-    return to_result(std::move(message).value());
+    if (!read_error.empty()) return make_error(read_error_code, read_error);
+    TR_TRY(TetgenAnswer answer, decode_answer(bytes));
+    return to_result(std::move(answer));
 }
 
 }  // namespace tr::detail

@@ -33,19 +33,19 @@ struct TetgenResult {
 };
 
 // Runs tetrahedralize() with `switches` (TetGen syntax without the dash; 'z' is added so that
-// indices start at 0) in a forked child process, which sends the mesh back through a pipe:
-// Debian's TetGen 1.5.0 frees its memory twice when it fails (terminatetetgen frees it, then
-// the unwinding destroys the tetgenmesh again), which would crash this process. The child's
-// stdout and stderr go to /dev/null (TetGen prints even with -Q). TetGen's failures (the int
-// it throws) become an Error with a sentence for the code; out-of-memory, other exceptions and
-// a crashed child too. POSIX only. Calls are serialized (a process-wide mutex).
-// The child allocates after fork(): fine with glibc's malloc, which is fork-safe, but GCC 12's
-// AddressSanitizer allocator is not: under ASan the child can hang when another thread was
-// allocating at the moment of the fork.
-// Cost: TetGen's, plus a fork (page tables, ~1 ms per GB of this process) and copying the mesh
-// through the pipe (~0.1 s per 10M tets).
+// indices start at 0) in a separate process, the worker program tetrender-tetgen-worker
+// (tetgen_worker_main.cpp), started with posix_spawn; the PLC goes to it and the mesh comes
+// back over a socket (tetgen_wire.h). Why a process: Debian's TetGen 1.5.0 frees its memory
+// twice when it fails (terminatetetgen frees it, then the unwinding destroys the tetgenmesh
+// again), which would crash this process. Why spawned, not forked: a child forked from a
+// process with other threads may only call async-signal-safe functions; GCC 12's
+// AddressSanitizer allocator, for one, deadlocked there. TetGen's failures (the int it throws)
+// become an Error with a sentence for the code; out-of-memory, other exceptions, a crashed
+// worker and a missing one (tetgen_worker_path) too. POSIX only; calls may run concurrently.
+// Cost: TetGen's, plus starting a small program (~1 ms, whatever this process's size) and
+// copying the PLC and the mesh through the socket (~0.1 s per 10M tets).
 //
-// Bounded: the child dies with this process (PR_SET_PDEATHSIG), and is killed when it runs past
+// Bounded: the worker dies with this process (PR_SET_PDEATHSIG), and is killed when it runs past
 // `time_limit` seconds, which is then an error saying so (kUnsupported).
 Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switches,
                                 double time_limit);
@@ -62,6 +62,13 @@ double tetgen_time_limit(const TetgenPlc& plc);
 inline Result<TetgenResult> run_tetgen(const TetgenPlc& plc, const std::string& switches) {
     return run_tetgen(plc, switches, tetgen_time_limit(plc));
 }
+// The worker program's file name, and where it is: $TETRENDER_TETGEN_WORKER when set (an error
+// if that is not an executable file), else the first executable file of: next to the running
+// program, next to the shared object holding this code (the Python module), in the build tree,
+// installed (PREFIX/libexec/tetrender). kNotFound, naming the places, when none is.
+inline constexpr const char* kTetgenWorkerName = "tetrender-tetgen-worker";
+Result<std::string> tetgen_worker_path();
+
 // A positive number as a plain decimal with 12 significant digits ("0.000125"): TetGen's
 // switch parser reads digits and '.', so no exponent.
 std::string tetgen_number(double value);
