@@ -4,6 +4,7 @@
 TETRENDER_PACKAGES=(
   cmake make g++ pkg-config clang-format
   libvtk9-dev libcgal-dev libtet1.5-dev libtbb-dev libglm-dev libpng-dev zlib1g-dev
+  liblz4-dev liblzma-dev
   nlohmann-json3-dev libcli11-dev libfreetype-dev fonts-dejavu-core
   libglfw3-dev libimgui-dev libepoxy-dev libgl1-mesa-dri xvfb xauth
   libgtest-dev libgmock-dev libbenchmark-dev ffmpeg

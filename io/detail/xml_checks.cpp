@@ -11,6 +11,8 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <lz4.h>
+#include <lzma.h>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -64,6 +66,32 @@ std::optional<std::string> base64_decode(const std::string& text) {
     return out;
 }
 
+// The compressors of VTK's XML files, each compressing a block on its own: zlib streams,
+// LZ4 blocks (no frame) and xz streams (lzma_easy_buffer_encode).
+enum class Codec { kZlib, kLz4, kLzma };
+
+// Collects bytes [skip, skip + want) of a decoder's output as it comes.
+class OutputRange {
+  public:
+    OutputRange(std::uint64_t skip, std::size_t want) : skip_(skip), want_(want) {}
+    bool done() const { return out_.size() >= want_; }
+    void add(const unsigned char* bytes, std::uint64_t n) {
+        for (std::uint64_t i = 0; i < n && !done(); ++i) {
+            if (produced_ + i >= skip_) out_ += static_cast<char>(bytes[i]);
+        }
+        produced_ += n;
+    }
+    std::optional<std::string> result() const {
+        if (!done()) return std::nullopt;
+        return out_;
+    }
+
+  private:
+    std::uint64_t skip_, produced_ = 0;
+    std::size_t want_;
+    std::string out_;
+};
+
 // Bytes [skip, skip + want) of the zlib stream `src` inflated (streaming, so a huge block size
 // costs no memory), or nothing when zlib fails or the stream is shorter.
 std::optional<std::string> inflate_range(const std::string& src, std::uint64_t skip,
@@ -72,25 +100,76 @@ std::optional<std::string> inflate_range(const std::string& src, std::uint64_t s
     if (inflateInit(&z) != Z_OK) return std::nullopt;
     z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(src.data()));
     z.avail_in = static_cast<uInt>(std::min<std::size_t>(src.size(), 0xffffffffu));
-    std::string out;
-    std::uint64_t produced = 0;
+    OutputRange range(skip, want);
     unsigned char buffer[1 << 14];
     int status = Z_OK;
-    while (status == Z_OK && out.size() < want) {
+    while (status == Z_OK && !range.done()) {
         z.next_out = buffer;
         z.avail_out = sizeof buffer;
         status = inflate(&z, Z_NO_FLUSH);
         if (status != Z_OK && status != Z_STREAM_END) break;
         const std::uint64_t got = sizeof buffer - z.avail_out;
-        for (std::uint64_t i = 0; i < got && out.size() < want; ++i) {
-            if (produced + i >= skip) out += static_cast<char>(buffer[i]);
-        }
-        produced += got;
+        range.add(buffer, got);
         if (got == 0 && status == Z_OK) break;  // no progress: truncated input
     }
     inflateEnd(&z);
-    if (out.size() < want) return std::nullopt;
-    return out;
+    return range.result();
+}
+
+// The same for an xz stream (vtkLZMADataCompressor), streaming too. The decoder may use at most
+// 256 MiB (a dictionary of 64 MiB, xz's largest preset, needs about 65 MiB); a stream asking
+// for more is not decoded here (VTK then says what is wrong).
+std::optional<std::string> unxz_range(const std::string& src, std::uint64_t skip,
+                                      std::size_t want) {
+    lzma_stream z = LZMA_STREAM_INIT;
+    if (lzma_stream_decoder(&z, std::uint64_t{256} << 20, 0) != LZMA_OK) return std::nullopt;
+    z.next_in = reinterpret_cast<const std::uint8_t*>(src.data());
+    z.avail_in = src.size();
+    OutputRange range(skip, want);
+    unsigned char buffer[1 << 14];
+    lzma_ret status = LZMA_OK;
+    while (status == LZMA_OK && !range.done()) {
+        z.next_out = buffer;
+        z.avail_out = sizeof buffer;
+        status = lzma_code(&z, LZMA_FINISH);
+        if (status != LZMA_OK && status != LZMA_STREAM_END) break;
+        const std::uint64_t got = sizeof buffer - z.avail_out;
+        range.add(buffer, got);
+        if (got == 0 && status == LZMA_OK) break;  // no progress: truncated input
+    }
+    lzma_end(&z);
+    return range.result();
+}
+
+// The same for an LZ4 block (vtkLZ4DataCompressor), decoded up to the bytes wanted (an LZ4
+// block has no streaming decoder, but LZ4 expands at most 255 times: an output past that cannot
+// be in the block, so the buffer is bounded by the file).
+std::optional<std::string> unlz4_range(const std::string& src, std::uint64_t skip,
+                                       std::size_t want) {
+    const std::uint64_t target = skip + want;
+    constexpr std::uint64_t kIntMax = std::numeric_limits<int>::max();
+    if (src.size() > kIntMax || target > kIntMax || target > 255 * src.size() + 16) {
+        return std::nullopt;
+    }
+    std::string out(static_cast<std::size_t>(target), '\0');
+    const int got =
+        LZ4_decompress_safe_partial(src.data(), out.data(), static_cast<int>(src.size()),
+                                    static_cast<int>(target), static_cast<int>(target));
+    if (got < 0 || static_cast<std::uint64_t>(got) < target) return std::nullopt;
+    return out.substr(static_cast<std::size_t>(skip), want);
+}
+
+std::optional<std::string> decode_range(Codec codec, const std::string& src, std::uint64_t skip,
+                                        std::size_t want) {
+    switch (codec) {
+        case Codec::kZlib:
+            return inflate_range(src, skip, want);
+        case Codec::kLz4:
+            return unlz4_range(src, skip, want);
+        case Codec::kLzma:
+            return unxz_range(src, skip, want);
+    }
+    return std::nullopt;
 }
 
 // The bytes of one DataArray as VTK's XML reader sees them: raw bytes from a file position
@@ -292,16 +371,23 @@ void check_compression_headers(const fs::path& path, const std::string& head,
 // malloc for 8.8e18 bytes, one of 2^63 - 1 overflowed the size and segfaulted; found by
 // fuzz_vtu). Read from ASCII arrays in the first 64 KB, and from binary ones however stored:
 // inline base64 (format="binary"), appended raw or base64, each uncompressed or compressed with
-// vtkZLibDataCompressor (header UInt32 or UInt64, either byte order). Only the few bytes holding
-// those values are read (one zlib block inflated up to them). LZ4 and LZMA compressed offsets are
-// not read.
+// vtkZLibDataCompressor, vtkLZ4DataCompressor or vtkLZMADataCompressor (header UInt32 or UInt64,
+// either byte order). Only the few bytes holding those values are read (one block decoded up to
+// them).
 void check_cell_offsets(const fs::path& path, const std::string& head, const XmlLandmarks& marks,
                         std::uintmax_t size, double limit) {
     const std::string where = path.string();
     const std::size_t root = head.find("<VTKFile");
     const std::string compressor = xml_attribute(head, root, "compressor");
     const bool compressed = !compressor.empty();
-    if (compressed && compressor != "vtkZLibDataCompressor") return;
+    Codec codec = Codec::kZlib;
+    if (compressor == "vtkLZ4DataCompressor") {
+        codec = Codec::kLz4;
+    } else if (compressor == "vtkLZMADataCompressor") {
+        codec = Codec::kLzma;
+    } else if (compressed && compressor != "vtkZLibDataCompressor") {
+        return;  // VTK 9.1 knows no other compressor: it refuses the file
+    }
     const bool big_endian = xml_attribute(head, root, "byte_order") == "BigEndian";
     const std::size_t header_size = xml_attribute(head, root, "header_type") == "UInt64" ? 8 : 4;
     const auto check = [&](double last) {
@@ -378,8 +464,8 @@ void check_cell_offsets(const fs::path& path, const std::string& head, const Xml
                 return bytes.get(1, header_bytes, at, n);
             };
         } else {
-            // vtkZLibDataCompressor: [blocks, block size, last block size (0: full), compressed
-            // size of each block], then the blocks.
+            // Every compressor: [blocks, block size, last block size (0: full), compressed size
+            // of each block], then the blocks.
             const auto h = bytes.get(0, 3 * header_size, 0, 3 * header_size);
             if (!h) continue;
             const std::uint64_t blocks = unsigned_of(*h, 0, header_size);
@@ -407,7 +493,8 @@ void check_cell_offsets(const fs::path& path, const std::string& head, const Xml
                     const auto z = bytes.get(1, header_bytes, block_start[j],
                                              block_start[j + 1] - block_start[j]);
                     if (!z) return std::nullopt;
-                    const auto part = inflate_range(*z, in_block, static_cast<std::size_t>(take));
+                    const auto part =
+                        decode_range(codec, *z, in_block, static_cast<std::size_t>(take));
                     if (!part) return std::nullopt;
                     out += *part;
                     at += take;
