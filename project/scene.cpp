@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -265,8 +266,21 @@ MethodSpec method(const json& j, const std::string& path) {
             m.options[key] = number(value, at);
         } else if (value.is_string()) {
             m.options[key] = value.get<std::string>();
+        } else if (value.is_array() && !value.empty() &&
+                   std::all_of(value.begin(), value.end(),
+                               [](const json& row) { return row.is_array(); })) {
+            NumberLists lists;
+            for (std::size_t i = 0; i < value.size(); ++i) {
+                std::vector<double> row;
+                for (std::size_t k = 0; k < value[i].size(); ++k) {
+                    row.push_back(number(value[i][k], at + "[" + std::to_string(i) + "][" +
+                                                          std::to_string(k) + "]"));
+                }
+                lists.push_back(std::move(row));
+            }
+            m.options[key] = std::move(lists);
         } else {
-            fail(at, "expected a number, a string or true/false");
+            fail(at, "expected a number, a string, true/false or a list of lists of numbers");
         }
     }
     return m;

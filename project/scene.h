@@ -73,9 +73,13 @@ struct SceneVolume {
     bool log_scale = false;
 };
 
+// A list of lists of numbers: a method key such as texture-advection's "slices"
+// ([[px, py, pz, nx, ny, nz], ...]).
+using NumberLists = std::vector<std::vector<double>>;
+
 // A method's own keys (spec: "a method may take further keys of its own"), checked by the
 // method that takes them.
-using MethodOption = std::variant<bool, std::int64_t, double, std::string>;
+using MethodOption = std::variant<bool, std::int64_t, double, std::string, NumberLists>;
 
 // How the picture is made (spec section "Method"). The name is checked against the methods
 // this build has when the scene is rendered (pipeline/), not here.
