@@ -22,10 +22,10 @@ std::string scalar_arrays(const TetMesh& mesh) {
 
 }  // namespace
 
-Result<SpotNoiseFramesReport> spot_noise_frames(
-    const TetMesh& mesh, const FaceAdjacency& adjacency, const VelocityField& velocity,
-    const SpotNoiseFramesOptions& options,
-    const std::function<Status(int frame, const Image& picture)>& on_frame) {
+Result<std::unique_ptr<SpotNoiseRun>> start_spot_noise(const TetMesh& mesh,
+                                                       const FaceAdjacency& adjacency,
+                                                       const VelocityField& velocity,
+                                                       const SpotNoiseFramesOptions& options) {
     if (options.steps < 0 || options.width < 1 || options.height < 1 || options.spots.band < 0 ||
         options.spots.dt < 0 || !std::isfinite(options.spots.dt)) {
         return make_error(ErrorCode::kInvalidArgument,
@@ -52,10 +52,13 @@ Result<SpotNoiseFramesReport> spot_noise_frames(
     if (!std::isfinite(spot_options.start_time)) {
         return make_error(ErrorCode::kInvalidArgument, "the start time must be finite");
     }
-    const MeshFlow flow(mesh, adjacency, velocity);
-    TR_TRY(SpotNoise spots, SpotNoise::create(mesh, flow.locator(), *scalar, flow, spot_options));
-
-    SpotNoiseFramesReport report;
+    auto run = std::make_unique<SpotNoiseRun>();
+    run->flow = std::make_unique<MeshFlow>(mesh, adjacency, velocity);
+    const MeshFlow& flow = *run->flow;
+    TR_TRY(SpotNoise created, SpotNoise::create(mesh, flow.locator(), *scalar, flow, spot_options));
+    run->spots.emplace(std::move(created));
+    SpotNoise& spots = *run->spots;
+    SpotNoiseFramesReport& report = run->report;
     report.band_tets = spots.band_tets();
     report.spots = spots.size();
     report.band = spot_options.band;
@@ -73,6 +76,18 @@ Result<SpotNoiseFramesReport> spot_noise_frames(
     }
     spots.retime(dt, lifetime);
     report.dt = dt;
+    return run;
+}
+
+Result<SpotNoiseFramesReport> spot_noise_frames(
+    const TetMesh& mesh, const FaceAdjacency& adjacency, const VelocityField& velocity,
+    const SpotNoiseFramesOptions& options,
+    const std::function<Status(int frame, const Image& picture)>& on_frame) {
+    TR_TRY(const std::unique_ptr<SpotNoiseRun> run,
+           start_spot_noise(mesh, adjacency, velocity, options));
+    SpotNoise& spots = *run->spots;
+    SpotNoiseFramesReport report = run->report;
+    const double dt = report.dt;
 
     Camera camera;
     if (options.camera) {

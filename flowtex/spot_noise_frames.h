@@ -10,9 +10,11 @@
 #include <mesh/tet_mesh.h>
 #include <project/opaque_geometry.h>
 
+#include <flowtex/flow.h>
 #include <flowtex/spot_noise.h>
 #include <flowtex/spot_raster.h>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,6 +47,19 @@ struct SpotNoiseFramesReport {
     std::size_t reseeded = 0;             // summed over the frames
     double advect_ms = 0, raster_ms = 0;  // summed over the frames
 };
+
+// Spots seeded and timed as spot_noise_frames does, before its frames: the flow they follow,
+// the spots at frame 0 (their dt and lifetime set) and the report's band, dt, counts and mean
+// speed. Errors: spot_noise_frames' (but the camera's and on_frame's).
+struct SpotNoiseRun {
+    std::unique_ptr<MeshFlow> flow;  // the spots keep a reference
+    std::optional<SpotNoise> spots;
+    SpotNoiseFramesReport report;
+};
+Result<std::unique_ptr<SpotNoiseRun>> start_spot_noise(const TetMesh& mesh,
+                                                       const FaceAdjacency& adjacency,
+                                                       const VelocityField& velocity,
+                                                       const SpotNoiseFramesOptions& options);
 
 // Seeds spots in the band around `scalar` = iso, advects them `steps` frames and hands each
 // frame's picture (frame 0 first) to on_frame, which may fail (a write) and stop the run. Zero

@@ -81,6 +81,7 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
     const std::size_t pixels = static_cast<std::size_t>(w) * h;
     buffers.intensity.assign(pixels, 0.0f);
     buffers.coverage.assign(pixels, 0.0f);
+    buffers.depth.assign(pixels, 0.0f);
     const std::size_t n = spots.size();
     std::vector<Footprint> prints(n);
     const auto positions = spots.positions();
@@ -152,6 +153,7 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
                 const std::size_t row = static_cast<std::size_t>(y) * w;
                 float* intensity = buffers.intensity.data() + row;
                 float* coverage = buffers.coverage.data() + row;
+                float* depth_sum = buffers.depth.data() + row;
                 const double* hidden = depth ? depth->data() + row : nullptr;
                 for (int x = xa; x <= xb; ++x, q += dq, dq += ddq) {
                     if (!(q < kCutQf)) continue;
@@ -160,10 +162,19 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
                         table[static_cast<int>(std::max(q, 0.0f) * to_table + 0.5f)];
                     intensity[x] += f.amplitude * weight;
                     coverage[x] += weight;
+                    depth_sum[x] += f.depth * weight;
                 }
             }
         }
     });
+}
+
+void spot_color(const SpotRasterOptions& options, float intensity, float coverage, Vec3f& color,
+                float& alpha) {
+    const double cover = coverage;
+    const double g = 0.5 + 0.5 * std::tanh(options.contrast * intensity / std::sqrt(1.0 + cover));
+    alpha = static_cast<float>(-std::expm1(-options.opacity * cover));
+    color = options.dark + static_cast<float>(g) * (options.light - options.dark);
 }
 
 void render_spots(const CameraFrame& camera, const SpotNoise& spots,
@@ -181,11 +192,9 @@ void render_spots(const CameraFrame& camera, const SpotNoise& spots,
                 image.pixels[pixel] = base;
                 continue;
             }
-            const double g = 0.5 + 0.5 * std::tanh(options.contrast * buffers.intensity[pixel] /
-                                                   std::sqrt(1.0 + cover));
-            const float alpha = static_cast<float>(-std::expm1(-options.opacity * cover));
-            const Vec3f spot =
-                options.dark + static_cast<float>(g) * (options.light - options.dark);
+            Vec3f spot;
+            float alpha = 0;
+            spot_color(options, buffers.intensity[pixel], buffers.coverage[pixel], spot, alpha);
             image.pixels[pixel] = alpha * spot + (1.0f - alpha) * base;
         }
     });

@@ -43,7 +43,13 @@ struct SpotBuffers {
     int width = 0, height = 0;
     std::vector<float> intensity;  // I
     std::vector<float> coverage;   // W
+    std::vector<float> depth;      // sum w_i d_i, d_i spot i's centre's ray parameter
 };
+
+// A pixel's spot colour (before compositing) and opacity from its sums I and W (W > 0), as
+// render_spots colours them.
+void spot_color(const SpotRasterOptions& options, float intensity, float coverage, Vec3f& color,
+                float& alpha);
 
 // The projected ellipse of a spot at `point` moving with `velocity`: centre (pixels), unit
 // long-axis direction on the image (x right, y down; (1, 0) when the projected velocity is
