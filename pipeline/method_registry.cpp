@@ -5,6 +5,7 @@
 #include <pipeline/pbvr_methods.h>
 #include <pipeline/projected_tetrahedra.h>
 #include <pipeline/splat_method.h>
+#include <pipeline/texture_advection_method.h>
 
 namespace tr {
 namespace {
@@ -16,6 +17,8 @@ const std::vector<std::unique_ptr<RenderMethod>>& methods() {
         m.push_back(make_pbvr_object_method());
         m.push_back(make_pbvr_image_method());
         m.push_back(make_splat_method());
+        m.push_back(make_texture_advection_method());
+        m.push_back(make_spot_noise_method());
         return m;
     }();
     return all;

@@ -41,6 +41,15 @@ struct RenderOptions {
     // Flow volumes: called with the picture after each layer, in order (`tetrender flowvol
     // --frames`); an error stops the render and is returned.
     std::function<Status(std::size_t layer, const Image& picture)> on_flow_volume_layer;
+    // Animated methods (texture-advection, spot-noise): called with the picture of each frame
+    // 0, 1, ..., the method's `steps`, in order (`tetrender render --frames`); the render then
+    // returns the last. An error stops the render and is returned. Unset: the picture of the
+    // method's `frame` only.
+    std::function<Status(int frame, const Image& picture)> on_frame;
+    // Projected tetrahedra: this layer (colour and per-pixel ray parameter, of the picture's
+    // size) under the volume instead of the scene's opaque surfaces: how the animated methods
+    // split the volume's ray integral at their sheets' depths. Null: the scene's own.
+    const OpaqueLayer* opaque_override = nullptr;
 };
 
 // The names users give sorts and integrators, with one wording of their errors for every

@@ -117,12 +117,16 @@ Result<RenderResult> render_merged(Pipeline& pipeline, const Scene& scene,
     const CameraFrame frame(scene.camera, scene.width, scene.height);
     TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
     start = Clock::now();
-    const OpaqueLayer layer =
-        opaque.empty() ? OpaqueLayer{} : render_opaque(opaque.layers(), frame, scene.background);
+    const OpaqueLayer layer = opaque.empty() || options.opaque_override
+                                  ? OpaqueLayer{}
+                                  : render_opaque(opaque.layers(), frame, scene.background);
     result.stats.set("opaque_ms", ms_since(start));
     merged.camera = &frame;
     merged.background = scene.background;
-    if (!opaque.empty()) {
+    if (options.opaque_override) {
+        merged.opaque_color = &options.opaque_override->color;
+        merged.opaque_depth = &options.opaque_override->depth;
+    } else if (!opaque.empty()) {
         merged.opaque_color = &layer.color;
         merged.opaque_depth = &layer.depth;
     }
@@ -218,13 +222,16 @@ class ProjectedTetrahedra final : public RenderMethod {
         result.stats.set("shader_ms", ms_since(start));
         TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
         start = Clock::now();
-        const OpaqueLayer layer = opaque.empty()
+        const OpaqueLayer layer = opaque.empty() || options.opaque_override
                                       ? OpaqueLayer{}
                                       : render_opaque(opaque.layers(), frame, scene.background);
         result.stats.set("opaque_ms", ms_since(start));
 
         RenderInputs in;
-        if (!opaque.empty()) {
+        if (options.opaque_override) {
+            in.opaque_color = &options.opaque_override->color;
+            in.opaque_depth = &options.opaque_override->depth;
+        } else if (!opaque.empty()) {
             in.opaque_color = &layer.color;
             in.opaque_depth = &layer.depth;
         }

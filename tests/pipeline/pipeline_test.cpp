@@ -73,8 +73,9 @@ bool identical(const Image& a, const Image& b) {
 }
 
 TEST(Methods, EveryNameOfTheSpecDispatches) {
-    EXPECT_EQ(method_names(), (std::vector<std::string>{"projected-tetrahedra", "pbvr-object",
-                                                        "pbvr-image", "splat"}));
+    EXPECT_EQ(method_names(),
+              (std::vector<std::string>{"projected-tetrahedra", "pbvr-object", "pbvr-image",
+                                        "splat", "texture-advection", "spot-noise"}));
     for (const std::string& name : method_names()) {
         ASSERT_NE(find_method(name), nullptr) << name;
         EXPECT_EQ(find_method(name)->name(), name);
