@@ -97,11 +97,19 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args,
     return quick_scene_of_file(pipeline, args.input, options, file, &notes);
 }
 
-// The frames of an orbit (--orbit) or of every time step (--time-step all), each written as
-// frame_NNNN.png into --frames DIR (or a temporary folder) and, with --movie, encoded.
+// Whether the scene's method animates by itself (its frames 0 .. steps: texture-advection,
+// spot-noise).
+bool animated_method(const Scene& scene) {
+    return scene.method_name() == "texture-advection" || scene.method_name() == "spot-noise";
+}
+
+// The frames of an orbit (--orbit), of every time step (--time-step all) or of an animated
+// method, each written as frame_NNNN.png into --frames DIR (or a temporary folder) and, with
+// --movie, encoded.
+
 template <class Picture>
 int render_frames(const RenderArgs& args, const Scene& scene, const Picture& picture,
-                  Pipeline& pipeline) {
+                  Pipeline& pipeline, RenderOptions& options) {
     std::filesystem::path dir = args.frames_dir;
     std::filesystem::path temporary;
     if (dir.empty()) {
@@ -119,16 +127,33 @@ int render_frames(const RenderArgs& args, const Scene& scene, const Picture& pic
     spec.orbit_frames = args.frame_count;
     spec.every_time_step = args.time_step == "all";
     spec.splat_cycle = args.vectors.empty() ? 0 : args.cycle;
+    // An animated method hands over its frames from one render.
+    int method_frames = 0;
+    options.on_frame = [&](int k, const Image& image) -> Status {
+        TR_TRY_STATUS(write_image(image, frame_path(dir, k).string()));
+        if (!args.output.empty() && k == 0) TR_TRY_STATUS(write_image(image, args.output));
+        if (::isatty(STDERR_FILENO)) std::fprintf(stderr, "\rframe %d", k + 1);
+        ++method_frames;
+        return Status{};
+    };
+    if (!animated_method(scene)) options.on_frame = nullptr;
+    const auto method_render = [&]() -> Result<int> {
+        TR_TRY(const RenderResult result, picture(scene));
+        return method_frames;
+    };
     const auto written =
-        for_each_animation_frame(pipeline, scene, spec, [&](int k, const Scene& view) -> Status {
-            TR_TRY(const RenderResult result, picture(view));
-            TR_TRY_STATUS(write_image(result.image, frame_path(dir, k).string()));
-            if (!args.output.empty() && k == 0) {
-                TR_TRY_STATUS(write_image(result.image, args.output));
-            }
-            if (::isatty(STDERR_FILENO)) std::fprintf(stderr, "\rframe %d", k + 1);
-            return Status{};
-        });
+        options.on_frame
+            ? method_render()
+            : for_each_animation_frame(
+                  pipeline, scene, spec, [&](int k, const Scene& view) -> Status {
+                      TR_TRY(const RenderResult result, picture(view));
+                      TR_TRY_STATUS(write_image(result.image, frame_path(dir, k).string()));
+                      if (!args.output.empty() && k == 0) {
+                          TR_TRY_STATUS(write_image(result.image, args.output));
+                      }
+                      if (::isatty(STDERR_FILENO)) std::fprintf(stderr, "\rframe %d", k + 1);
+                      return Status{};
+                  });
     if (!written.ok()) {
         cleanup();
         return report_error(written.error());
@@ -333,7 +358,14 @@ int run_render(const RenderArgs& args) {
         }
         return result;
     };
-    if (animated) return render_frames(args, scene, picture, pipeline);
+    if (animated && animated_method(scene) && (args.orbit != 0 || args.time_step == "all")) {
+        std::fprintf(stderr,
+                     "tetrender: %s animates its own frames (--frames, --movie); it does not "
+                     "take --orbit or --time-step all\n",
+                     scene.method_name().c_str());
+        return kExitUsage;
+    }
+    if (animated) return render_frames(args, scene, picture, pipeline, options);
     auto result = picture(scene);
     if (!result.ok()) return report_error(result.error());
     const Status written = write_image(result->image, args.output);
@@ -354,7 +386,8 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--method", args->method,
                     "Rendering method, overriding the scene's: projected-tetrahedra (default; "
                     "several volumes by the exact segment merge), pbvr-image, pbvr-object "
-                    "(particles: --repetitions, --seed), splat (the mesh's points, a kernel each)");
+                    "(particles: --repetitions, --seed), splat (the mesh's points, a kernel each); "
+                    "texture-advection and spot-noise take their keys from the scene file");
     cmd->add_option("--repetitions", args->repetitions,
                     "Stochastic methods: ensemble size (>= 1), overriding the scene's")
         ->check(CLI::Range(1, 1 << 20));

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace tr {
 namespace {
@@ -245,6 +247,72 @@ TEST(CliAdvectBadInput, OneLineErrorsAndNoFrames) {
         run_cli("advect " + mesh + " --vectors v --frames " + shell_quote(dir + "/file/sub"));
     EXPECT_EQ(run.exit_code, 1);
     EXPECT_NE(run.err.find("cannot create the frames folder"), std::string::npos) << run.err;
+}
+
+// A scene of an animated method over the rotating grid (s = x): a volume of s (a faint
+// glow), two sheets. `method` holds the method's keys after its name.
+std::string advection_scene(const std::string& dir, const std::string& method) {
+    const std::string mesh = grid_file(dir, true, 1, "scene_grid.vtk", true);
+    const std::string path = dir + "/advect.scene.json";
+    std::ofstream(path) << R"({"mesh": ")" << mesh << R"(", "scalar": "s",
+  "transfer_function": {"color": [[0, 0.2, 0.5, 1], [2, 0.2, 0.5, 1]],
+                        "opacity": [[0, 0.05], [2, 0.05]], "unit_distance": 1},
+  "camera": {"position": [9, -6, 8], "focal_point": [2, 2, 2], "view_up": [0, 0, 1]},
+  "image": {"width": 48, "height": 32},
+  "method": {"name": ")" << method
+                        << "}}\n";
+    return path;
+}
+
+// `tetrender render SCENE --frames DIR` writes frames 0 .. steps of an animated method; a plain
+// render is its last frame, byte for byte.
+TEST(CliAdvectScene, RenderWritesTheMethodsFrames) {
+    const std::string dir = make_temp_dir();
+    for (const char* name : {"texture-advection", "spot-noise"}) {
+        SCOPED_TRACE(name);
+        const std::string keys =
+            std::string(name) == "spot-noise"
+                ? R"(spot-noise", "vectors": "v", "iso": 1, "count": 500, "steps": 3)"
+                : R"(texture-advection", "vectors": "v", "steps": 3, "resolution": 24,
+                     "slices": [[2, 2, 1.5, 0, 0, 1], [2, 2, 2.5, 0.2, 0, 1]])";
+        const std::string scene = advection_scene(dir, keys);
+        const std::string frames = dir + "/frames_" + name;
+        auto run = run_cli("render " + shell_quote(scene) + " --frames " + shell_quote(frames));
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        EXPECT_EQ(count_files(frames), 4);
+        EXPECT_TRUE(bytes(frames + "/frame_0000.png") != bytes(frames + "/frame_0003.png"))
+            << "the texture did not move";
+        const std::string last = dir + "/last.png";
+        run = run_cli("render " + shell_quote(scene) + " -o " + shell_quote(last));
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+        EXPECT_TRUE(bytes(last) == bytes(frames + "/frame_0003.png"));
+        run = run_cli("render " + shell_quote(scene) + " --orbit 90 --frames " +
+                      shell_quote(dir + "/orbit"));
+        EXPECT_EQ(run.exit_code, 2) << run.err;
+        EXPECT_NE(run.err.find("does not take --orbit"), std::string::npos) << run.err;
+    }
+}
+
+TEST(CliAdvectSceneBadInput, OneLineErrorsNamingTheSceneAndTheKey) {
+    const std::string dir = make_temp_dir();
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {R"(texture-advection", "vectors": "v", "sheet_opacity": "half")",
+         "$.method.sheet_opacity: expected a number in (0, 1]"},
+        {R"(texture-advection", "vectors": "v", "slices": [[2, 2, 9, 0, 0, 1]])",
+         "$.method.slices[0]: the slice"},
+        {R"(texture-advection", "vectors": "s")", "$.method.vectors: "},
+        {R"(spot-noise", "vectors": "v", "iso": 5)", "$.method.iso: "},
+    };
+    for (const auto& [keys, says] : cases) {
+        SCOPED_TRACE(keys);
+        const std::string scene = advection_scene(dir, keys);
+        const auto run =
+            run_cli("render " + shell_quote(scene) + " -o " + shell_quote(dir + "/bad.png"));
+        EXPECT_EQ(run.exit_code, 1) << run.err;
+        EXPECT_NE(run.err.find(scene + ": error: " + says), std::string::npos) << run.err;
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+        EXPECT_FALSE(std::filesystem::exists(dir + "/bad.png"));
+    }
 }
 
 }  // namespace
