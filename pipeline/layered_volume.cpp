@@ -46,7 +46,10 @@ Result<LayeredVolume> LayeredVolume::create(Pipeline& pipeline, const Scene& sce
     plain.opaque_override = nullptr;
     TR_TRY(RenderResult full, pipeline.render(volume, plain));
     out.full_ = std::move(full.image);
-    notes.insert(notes.end(), full.notes.begin(), full.notes.end());
+    for (std::string& note : full.notes) {
+        // The volume alone may well be clear: the sheets or spots are the picture.
+        if (note.rfind("the picture is empty", 0) != 0) notes.push_back(std::move(note));
+    }
     int renders = 1;
 
     // Each pixel's fragments in front of the opaque geometry, nearest first (ties: the earlier
