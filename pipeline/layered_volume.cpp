@@ -1,3 +1,4 @@
+#include <core/memory_budget.h>
 #include <core/parallel.h>
 
 #include <algorithm>
@@ -55,6 +56,13 @@ Result<LayeredVolume> LayeredVolume::create(Pipeline& pipeline, const Scene& sce
     // Each pixel's fragments in front of the opaque geometry, nearest first (ties: the earlier
     // surface).
     const std::size_t num_surfaces = depths.size();
+    // Per fragment rank two pictures and a rank map (25 bytes a pixel), the order lists and the
+    // depths given: refused before they are made when they would not fit.
+    const Status fits = check_memory(
+        static_cast<double>(num_pixels) * (25.0 * num_surfaces + 9.0 * num_surfaces + 16.0),
+        std::to_string(num_surfaces) + " layers over a " + std::to_string(scene.width) + "x" +
+            std::to_string(scene.height) + " picture");
+    if (!fits.ok()) return make_error(fits.error().code, fits.error().message, scene.source);
     std::vector<std::int8_t> order(num_pixels * num_surfaces, -1);
     std::vector<int> count(num_pixels, 0);
     parallel_for(0, num_pixels, 4096, [&](std::size_t p) {

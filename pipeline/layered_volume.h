@@ -43,7 +43,9 @@ class LayeredVolume {
     // background; its method is not looked at: projected tetrahedra with `options`' sort and
     // integrator) prepared under surfaces whose per-pixel ray parameters are `depths[s]`
     // (the camera's pixel rays; +inf or <= 0 where surface s does not cross the ray in front of
-    // the eye). Errors: the pipeline's. Stats: volume_renders, volume_ms, layers (K).
+    // the eye). Errors: the pipeline's; layers whose pictures would not fit the memory budget
+    // (core/memory_budget.h, 34 bytes a pixel and surface). Stats: volume_renders, volume_ms,
+    // layers (K).
     static Result<LayeredVolume> create(Pipeline& pipeline, const Scene& scene,
                                         const RenderOptions& options,
                                         std::span<const std::vector<double>> depths,
