@@ -41,6 +41,8 @@ struct ExodusSpec {
     std::vector<int> side_elems = {1, 2};
     std::vector<int> side_sides = {1, 2};
     std::vector<int> node_set = {1, 5};
+    bool nodal_names = true;      // name_nod_var
+    std::string extra_count_dim;  // a count of result variables (num_glo_var ...) of 1, no names
 };
 
 // Writes a small Exodus II file (one block of TETRA4, a nodal variable 'temp' = 10 * node id,
@@ -106,7 +108,9 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     const int v_elem_ss = var("elem_ss1", NC_INT, {d_side_ss});
     const int v_side_ss = var("side_ss1", NC_INT, {d_side_ss});
     const int v_node_ns = var("node_ns1", NC_INT, {d_node_ns});
-    const int v_nod_var_names = var("name_nod_var", NC_CHAR, {d_nod_var, d_len_name});
+    const int v_nod_var_names =
+        spec.nodal_names ? var("name_nod_var", NC_CHAR, {d_nod_var, d_len_name}) : -1;
+    if (!spec.extra_count_dim.empty()) dim(spec.extra_count_dim.c_str(), 1);
     const int v_temp = var("vals_nod_var1", NC_DOUBLE, {d_time, d_nodes});
     nc(nc_enddef(f), "enddef");
 
@@ -137,7 +141,9 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     nc(nc_put_var_int(f, v_node_ns, spec.node_set.data()), "node_ns1");
     std::vector<char> var_name(33, '\0');
     std::memcpy(var_name.data(), "temp", 4);
-    nc(nc_put_var_text(f, v_nod_var_names, var_name.data()), "name_nod_var");
+    if (spec.nodal_names) {
+        nc(nc_put_var_text(f, v_nod_var_names, var_name.data()), "name_nod_var");
+    }
     std::vector<double> temp(num_nodes);
     for (std::size_t i = 0; i < num_nodes; ++i) temp[i] = 10.0 * static_cast<double>(i + 1);
     const std::size_t start[2] = {0, 0};
@@ -197,6 +203,16 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
          "side set 1 (side_ss1): entry 0 is 9, outside 1..6"},
         {"node_set_past_end", [](ExodusSpec& s) { s.node_set[1] = 6; },
          "node set 1 (node_ns1): entry 1 is 6, outside 1..5"},
+        // fuzz_exodus, first run: result variables without their names made VTK's reader run
+        // strlen past the name buffers it left unset (ASan heap-buffer-overflow in
+        // RemoveBeginningAndTrailingSpaces, measured for nodal, element and global variables).
+        {"nodal_variables_without_names", [](ExodusSpec& s) { s.nodal_names = false; },
+         "'num_nod_var' is 1 but the file has no 'name_nod_var' (their names)"},
+        {"element_variables_without_names",
+         [](ExodusSpec& s) { s.extra_count_dim = "num_elem_var"; },
+         "'num_elem_var' is 1 but the file has no 'name_elem_var'"},
+        {"global_variables_without_names", [](ExodusSpec& s) { s.extra_count_dim = "num_glo_var"; },
+         "'num_glo_var' is 1 but the file has no 'name_glo_var'"},
     };
     TempDir dir;
     for (const Format& format : kFormats) {
