@@ -299,6 +299,132 @@ def surface_seeds():
             "be.ply": b"\x02" + ply("binary_big_endian"), "cube.obj": b"\x03" + obj().encode()}
 
 
+def netcdf_classic(dims, gatts, variables, version=1):
+    """A netCDF classic file (CDF-1, or CDF-2 with 64-bit offsets): dims is [(name, length)]
+    (length 0: the unlimited dimension, of one record), gatts and each variable's attributes
+    [(name, type, values)], variables [(name, type, dim names, attributes, values)]; types as
+    netCDF's: 2 char (values a str), 4 int, 5 float, 6 double."""
+    size = {2: 1, 4: 4, 5: 4, 6: 8}
+    fmt = {4: ">i", 5: ">f", 6: ">d"}
+
+    def pad(b):
+        return b + b"\0" * (-len(b) % 4)
+
+    def name(n):
+        return struct.pack(">i", len(n)) + pad(n.encode())
+
+    def values(t, v):
+        if t == 2:
+            return struct.pack(">i", len(v)), pad(v.encode())
+        return struct.pack(">i", len(v)), pad(b"".join(struct.pack(fmt[t], x) for x in v))
+
+    def atts(lst):
+        if not lst:
+            return b"\0" * 8
+        out = struct.pack(">ii", 0x0C, len(lst))
+        for n, t, v in lst:
+            count, data = values(t, v)
+            out += name(n) + struct.pack(">i", t) + count + data
+        return out
+
+    dim_ids = {n: i for i, (n, _) in enumerate(dims)}
+    lengths = dict(dims)
+    records = any(length == 0 for _, length in dims)
+    head = b"CDF" + bytes([version]) + struct.pack(">i", 1 if records else 0)
+    head += struct.pack(">ii", 0x0A, len(dims)) + b"".join(
+        name(n) + struct.pack(">i", length) for n, length in dims)
+    head += atts(gatts)
+
+    def var_entries(begins):
+        out = struct.pack(">ii", 0x0B, len(variables))
+        for (n, t, vdims, vatts, _), begin in zip(variables, begins):
+            count = 1
+            for d in vdims:
+                count *= lengths[d] if lengths[d] > 0 else 1
+            out += name(n) + struct.pack(">i", len(vdims))
+            out += b"".join(struct.pack(">i", dim_ids[d]) for d in vdims)
+            out += atts(vatts) + struct.pack(">ii", t, (count * size[t] + 3) // 4 * 4)
+            out += struct.pack(">i" if version == 1 else ">q", begin)
+        return out
+
+    header_size = len(head) + len(var_entries([0] * len(variables)))
+    data, begins = b"", []
+    for n, t, vdims, _, v in variables:
+        begins.append(header_size + len(data))
+        if not any(lengths[d] == 0 for d in vdims):
+            data += values(t, v)[1]
+    # Record variables begin after the fixed-size data, one after another within the record.
+    record = b""
+    for i, (_, t, vdims, _, v) in enumerate(variables):
+        if any(lengths[d] == 0 for d in vdims):
+            begins[i] = header_size + len(data) + len(record)
+            record += values(t, v)[1]
+    return head + var_entries(begins) + data + record
+
+
+def exodus_seeds():
+    """Exodus II files as the Exodus library lays them out in netCDF (CDF-1 and CDF-2): the cube
+    and tet of POINTS/CELLS as a HEX8 and a TETRA4 block with a nodal variable, a side set and a
+    node set; and two cubes as polyhedra (NFACED over an NSIDED face block)."""
+    def common(num_nodes, xyz):
+        gatts = [("api_version", 5, [8.03]), ("version", 5, [8.03]),
+                 ("floating_point_word_size", 4, [8]), ("file_size", 4, [1]),
+                 ("maximum_name_length", 4, [32]), ("title", 2, "seed")]
+        dims = [("len_name", 33), ("time_step", 0), ("num_dim", 3), ("num_nodes", num_nodes)]
+        variables = [("time_whole", 6, ["time_step"], [], [0.0]),
+                     ("coordx", 6, ["num_nodes"], [], [p[0] for p in xyz]),
+                     ("coordy", 6, ["num_nodes"], [], [p[1] for p in xyz]),
+                     ("coordz", 6, ["num_nodes"], [], [p[2] for p in xyz])]
+        return gatts, dims, variables
+
+    gatts, dims, variables = common(len(POINTS), POINTS)
+    hexes = [c for t, c in CELLS if t == 12]
+    tets = [c for t, c in CELLS if t == 10]
+    dims += [("num_elem", 2), ("num_el_blk", 2), ("num_el_in_blk1", 1), ("num_nod_per_el1", 8),
+             ("num_el_in_blk2", 1), ("num_nod_per_el2", 4), ("num_side_sets", 1),
+             ("num_side_ss1", 1), ("num_node_sets", 1), ("num_nod_ns1", 2), ("num_nod_var", 1)]
+    variables += [
+        ("eb_status", 4, ["num_el_blk"], [], [1, 1]),
+        ("eb_prop1", 4, ["num_el_blk"], [("name", 2, "ID")], [1, 2]),
+        ("connect1", 4, ["num_el_in_blk1", "num_nod_per_el1"], [("elem_type", 2, "HEX8")],
+         [i + 1 for c in hexes for i in c]),
+        ("connect2", 4, ["num_el_in_blk2", "num_nod_per_el2"], [("elem_type", 2, "TETRA4")],
+         [i + 1 for c in tets for i in c]),
+        ("ss_status", 4, ["num_side_sets"], [], [1]),
+        ("ss_prop1", 4, ["num_side_sets"], [("name", 2, "ID")], [20]),
+        ("elem_ss1", 4, ["num_side_ss1"], [], [1]), ("side_ss1", 4, ["num_side_ss1"], [], [5]),
+        ("ns_status", 4, ["num_node_sets"], [], [1]),
+        ("ns_prop1", 4, ["num_node_sets"], [("name", 2, "ID")], [30]),
+        ("node_ns1", 4, ["num_nod_ns1"], [], [1, 9]),
+        ("name_nod_var", 2, ["num_nod_var", "len_name"], [], "temp".ljust(33, "\0")),
+        ("vals_nod_var1", 6, ["time_step", "num_nodes"], [], TEMP)]
+    seeds = {"hex_tet.exo": netcdf_classic(dims, gatts, variables),
+             "hex_tet_cdf2.exo": netcdf_classic(dims, gatts, variables, version=2)}
+
+    cube2 = [(2, 0, 0), (2, 1, 0), (2, 0, 1), (2, 1, 1)]
+    gatts, dims, variables = common(12, POINTS[:8] + cube2)
+    faces = [(1, 4, 3, 2), (2, 3, 7, 6), (5, 6, 7, 8), (1, 2, 6, 5), (3, 4, 8, 7), (1, 5, 8, 4),
+             (2, 9, 10, 3), (9, 11, 12, 10), (6, 7, 12, 11), (2, 6, 11, 9), (3, 10, 12, 7)]
+    dims += [("num_elem", 2), ("num_face", 11), ("num_el_blk", 1), ("num_fa_blk", 1),
+             ("num_fa_in_blk1", 11), ("num_nod_per_fa1", 44), ("num_el_in_blk1", 2),
+             ("num_fac_per_el1", 12)]
+    variables += [
+        ("eb_status", 4, ["num_el_blk"], [], [1]),
+        ("eb_prop1", 4, ["num_el_blk"], [("name", 2, "ID")], [1]),
+        ("fa_status", 4, ["num_fa_blk"], [], [1]),
+        ("fa_prop1", 4, ["num_fa_blk"], [("name", 2, "ID")], [10]),
+        ("fbconn1", 4, ["num_nod_per_fa1"], [("elem_type", 2, "nsided")],
+         [i for f in faces for i in f]),
+        ("fbepecnt1", 4, ["num_fa_in_blk1"],
+         [("entity_type1", 2, "NODE"), ("entity_type2", 2, "FACE")], [4] * 11),
+        ("facconn1", 4, ["num_fac_per_el1"], [("elem_type", 2, "nfaced")],
+         [1, 2, 3, 4, 5, 6, 2, 7, 8, 9, 10, 11]),
+        ("ebepecnt1", 4, ["num_el_in_blk1"],
+         [("entity_type1", 2, "FACE"), ("entity_type2", 2, "ELEM")], [6, 6])]
+    seeds["polyhedra.exo"] = netcdf_classic(dims, gatts, variables)
+    return seeds
+
+
 class Provider:
     """Bytes in the order FuzzedDataProvider consumes them (integers from the end of the
     input, most significant byte first); bytes() gives the input."""
@@ -383,6 +509,7 @@ def main():
                           ("legacy_vtk", legacy_seeds()), ("vtu", vtu_seeds()),
                           ("tetgen", tetgen_seeds()), ("csv", csv_seeds()),
                           ("mfem", {"mixed.mesh": mfem_mesh()}), ("surface", surface_seeds()),
+                          ("exodus", exodus_seeds()),
                           ("mesh_pipeline", mesh_pipeline_seeds())]:
         os.makedirs(os.path.join(out, target), exist_ok=True)
         for name, data in seeds.items():
