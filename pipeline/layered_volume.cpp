@@ -26,6 +26,18 @@ std::vector<double> plane_depths(const CameraFrame& frame, const Vec3& point, co
     return depth;
 }
 
+Status check_layers_memory(const Scene& scene, std::size_t surfaces) {
+    // Per surface its depths (8 bytes a pixel), a place in each pixel's order (1) and, per
+    // fragment rank, two pictures and a rank map (25); the full picture and the opaque layer.
+    const double pixels = static_cast<double>(scene.width) * scene.height;
+    const Status fits =
+        check_memory(pixels * (34.0 * static_cast<double>(surfaces) + 32.0),
+                     std::to_string(surfaces) + " layers over a " + std::to_string(scene.width) +
+                         "x" + std::to_string(scene.height) + " picture");
+    if (!fits.ok()) return make_error(fits.error().code, fits.error().message, scene.source);
+    return {};
+}
+
 Result<LayeredVolume> LayeredVolume::create(Pipeline& pipeline, const Scene& scene,
                                             const RenderOptions& options,
                                             std::span<const std::vector<double>> depths,
@@ -34,6 +46,8 @@ Result<LayeredVolume> LayeredVolume::create(Pipeline& pipeline, const Scene& sce
     out.width_ = scene.width;
     out.height_ = scene.height;
     const std::size_t num_pixels = static_cast<std::size_t>(scene.width) * scene.height;
+    const std::size_t num_surfaces = depths.size();
+    TR_TRY_STATUS(check_layers_memory(scene, num_surfaces));
     const CameraFrame frame(scene.camera, scene.width, scene.height);
     TR_TRY(out.opaque_, opaque_layer(pipeline, scene, frame, stats));
     const auto start = std::chrono::steady_clock::now();
@@ -55,14 +69,6 @@ Result<LayeredVolume> LayeredVolume::create(Pipeline& pipeline, const Scene& sce
 
     // Each pixel's fragments in front of the opaque geometry, nearest first (ties: the earlier
     // surface).
-    const std::size_t num_surfaces = depths.size();
-    // Per fragment rank two pictures and a rank map (25 bytes a pixel), the order lists and the
-    // depths given: refused before they are made when they would not fit.
-    const Status fits = check_memory(
-        static_cast<double>(num_pixels) * (25.0 * num_surfaces + 9.0 * num_surfaces + 16.0),
-        std::to_string(num_surfaces) + " layers over a " + std::to_string(scene.width) + "x" +
-            std::to_string(scene.height) + " picture");
-    if (!fits.ok()) return make_error(fits.error().code, fits.error().message, scene.source);
     std::vector<std::int8_t> order(num_pixels * num_surfaces, -1);
     std::vector<int> count(num_pixels, 0);
     parallel_for(0, num_pixels, 4096, [&](std::size_t p) {

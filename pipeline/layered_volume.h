@@ -67,6 +67,11 @@ class LayeredVolume {
     Image full_;                                  // R
 };
 
+// Whether the pictures and depths of `surfaces` layers over the scene's picture fit the memory
+// budget (core/memory_budget.h; about 34 bytes a pixel and surface): an error naming the scene
+// file otherwise. LayeredVolume::create checks it; callers check it before making the depths.
+Status check_layers_memory(const Scene& scene, std::size_t surfaces);
+
 // Per pixel (row 0 at the top), the ray parameter at which `frame`'s pixel ray crosses the plane
 // through `point` with normal `normal`; +inf where it does not in front of the eye (parallel, or
 // behind). The depth opaque geometry and the volume renderer use.

@@ -1,5 +1,6 @@
 #include <core/parallel.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <flowtex/advected_sheets.h>
@@ -225,6 +226,8 @@ class TextureAdvectionMethod final : public RenderMethod {
             }
         }
         sheet_options.index_slice_errors = true;
+        TR_TRY_STATUS(
+            check_layers_memory(scene, std::max<std::size_t>(1, sheet_options.slices.size())));
         sheet_options.sheet_resolution = static_cast<int>(integer_key(scene, "resolution", 256));
         const int steps = static_cast<int>(integer_key(scene, "steps", 100));
         sheet_options.steps = steps;
@@ -384,6 +387,7 @@ class SpotNoiseMethod final : public RenderMethod {
         const int last =
             options.on_frame ? steps : static_cast<int>(integer_key(scene, "frame", steps));
         const std::size_t num_pixels = static_cast<std::size_t>(scene.width) * scene.height;
+        TR_TRY_STATUS(check_layers_memory(scene, 1));
         SpotBuffers buffers;
         std::vector<SurfaceFragments> fragments(1);
         std::vector<std::vector<double>> depths(1);

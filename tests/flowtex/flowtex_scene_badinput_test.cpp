@@ -1,6 +1,7 @@
 // Bad keys of the scene methods texture-advection and spot-noise: one-line errors naming the
 // scene file and the key's JSON path, from check() (kinds, ranges) and from loading (a slice
 // that misses the mesh, an iso outside the scalar's range, an unknown vector array).
+#include <core/memory_budget.h>
 #include <tests/flowtex/scene_fixtures.h>
 
 #include <gtest/gtest.h>
@@ -97,6 +98,24 @@ TEST(FlowtexSceneBadInput, SliceMissingTheMeshAndIsoOutsideTheRange) {
         EXPECT_NE(line.find(c.says), std::string::npos);
         EXPECT_EQ(line.find('\n'), std::string::npos);
     }
+}
+
+// Layers whose pictures would not fit the memory budget: one line, before any is made.
+TEST(FlowtexSceneBadInput, LayersBeyondTheMemoryBudget) {
+    NumberLists slices;
+    for (int i = 0; i < 16; ++i) slices.push_back({0, 0, -1.5 + 0.2 * i, 0, 0, 1});
+    Scene scene = flow_scene(0.0);
+    scene.camera = top_camera(true);
+    scene.method = advection_method(slices, 2, 0.5);
+    set_memory_budget(1 << 20);  // 96^2 pixels x 16 layers take about 5 MB
+    Pipeline pipeline;
+    const auto result = pipeline.render(scene);
+    set_memory_budget(0);
+    ASSERT_FALSE(result.ok());
+    const std::string line = result.error().to_string();
+    EXPECT_EQ(line.rfind("flow.scene.json: error: 16 layers over a 96x96 picture would take", 0),
+              0u)
+        << line;
 }
 
 }  // namespace
