@@ -218,6 +218,11 @@ class TextureAdvectionMethod final : public RenderMethod {
                                 const RenderOptions& options) const override {
         RenderResult result;
         NamedStats& stats = result.stats;
+        if (scene.method && (scene.method->repetitions || scene.method->seed)) {
+            result.notes.push_back(
+                "repetitions and seed apply to the stochastic methods: texture-advection ignores "
+                "them");
+        }
         TR_TRY(const SceneFlow flow, scene_flow(pipeline, scene));
         AdvectedSheetsOptions sheet_options;
         if (const MethodOption* o = option(scene, "slices")) {
@@ -353,6 +358,15 @@ class SpotNoiseMethod final : public RenderMethod {
         spot_options.spots.count = static_cast<std::size_t>(integer_key(scene, "count", 20000));
         spot_options.spots.dt = number_key(scene, "dt", 0.0);
         spot_options.spots.lifetime_frames = static_cast<int>(integer_key(scene, "lifetime", 60));
+        // The method's seed places the spots; repetitions: none.
+        if (scene.method && scene.method->seed) {
+            spot_options.spots.seed = static_cast<std::uint64_t>(*scene.method->seed);
+        }
+        if (scene.method && scene.method->repetitions) {
+            result.notes.push_back(
+                "repetitions apply to the stochastic methods: spot-noise "
+                "draws one set of spots (its seed places them)");
+        }
         if (option(scene, "start_time")) {
             spot_options.spots.start_time = number_key(scene, "start_time", 0.0);
             spot_options.start_time_set = true;

@@ -13,7 +13,8 @@
 // "forward"), reinject (even, 40; 0 off), resolution (256), sheet_opacity (0.6, in (0, 1]).
 // spot-noise keys: vectors (required), scalar (a 1-component point array; default the scene's
 // scalar), iso (required, inside the scalar's range), band, count (20000), dt, steps (100),
-// frame (steps), lifetime, unsteady, start_time, spot_opacity (1.5: W's opacity rate).
+// frame (steps), lifetime, unsteady, start_time, spot_opacity (1.5: W's opacity rate); the
+// method's seed places the spots.
 
 #include <memory>
 #include <pipeline/method.h>

@@ -279,6 +279,9 @@ TEST(FlowtexScene, ClearVolumeSpotsEqualSpotNoiseFrames) {
         EXPECT_TRUE(frames[k].pixels == expected[k].pixels);
     }
     EXPECT_FALSE(frames[0].pixels == frames[4].pixels);
+    // The method's seed places the spots: another seed, other spots.
+    scene.method->seed = 7;
+    EXPECT_FALSE(render(scene).pixels == frames[4].pixels);
 }
 
 }  // namespace
