@@ -76,6 +76,14 @@ SplatFootprint::SplatFootprint(SplatKernel kernel, int samples)
     scale_ = (n - 1) / support_;
     table_.resize(static_cast<std::size_t>(n) + 1, 0.0);  // one 0 past the support
     for (int i = 0; i < n; ++i) table_[static_cast<std::size_t>(i)] = integrate(kernel, i / scale_);
+    const double squared_scale = (n - 1) / (support_ * support_);
+    squared_scale_ = static_cast<float>(squared_scale);
+    squared_last_ = static_cast<float>(n - 1);
+    squared_table_.resize(static_cast<std::size_t>(n) + 1, 0.0f);
+    for (int i = 0; i < n; ++i) {
+        squared_table_[static_cast<std::size_t>(i)] =
+            static_cast<float>(integrate(kernel, std::sqrt(i / squared_scale)));
+    }
 }
 
 }  // namespace tr

@@ -59,10 +59,14 @@ TEST(Splats, ConstantFieldIsTheSlab) {
                 const double margin = footprint.support();
                 if (u < margin || v < margin || u > kCells - margin || v > kCells - margin)
                     continue;
-                // The model: a column of 17 points above each lattice point of the plane.
+                // The model: a column of 17 points above each lattice point of the plane (the
+                // footprint as an orthographic view reads it, by rho^2).
                 double sum = 0;
                 for (int i = 0; i <= kCells; ++i) {
-                    for (int j = 0; j <= kCells; ++j) sum += footprint(std::hypot(u - i, v - j));
+                    for (int j = 0; j <= kCells; ++j) {
+                        const double rho_sq = (u - i) * (u - i) + (v - j) * (v - j);
+                        sum += footprint.of_squared(static_cast<float>(rho_sq));
+                    }
                 }
                 const double depth = kappa * kSpacing * (kCells + 1) * sum;
                 const double model = -std::expm1(-depth);
@@ -82,7 +86,9 @@ TEST(Splats, ConstantFieldIsTheSlab) {
             std::string(splat_kernel_name(kernel)).c_str(), sheet ? "sheet-buffer" : "per-splat",
             counted, worst_model, lo, hi, sum_ratio / counted);
         ASSERT_GT(counted, 1000);
-        EXPECT_LT(worst_model, 1e-6);  // float rounding of the composite
+        // Float rounding of the composite: measured 5.8e-7 (cubic) and 8.8e-7 (Gaussian) per
+        // splat (each alpha 1 - exp in float), 1.8e-7 with the sheet buffer.
+        EXPECT_LT(worst_model, 1.5e-6);
         // Both compositings alike: one colour, so only the summed optical depth matters.
         // The plane's footprint sum: mean 1 (the kernel's integral) with a ripple. Measured:
         // the cubic 0.99969 to 1.00020, mean 0.99996 (seen along a lattice axis its ripple is a
