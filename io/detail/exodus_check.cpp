@@ -282,6 +282,49 @@ void check_polyhedral_block(const NetcdfFile& file, std::size_t b,
                          "the faces of face block 1");
 }
 
+// Every block and set the file counts must be one the Exodus library can describe: VTK's
+// reader skips an object whose parameters it cannot read (ex_get_block, ex_get_set_param) but
+// still counts it, and dereferences a null when it names the objects (GetSortedObjectInfo in
+// BuildSIL; fuzz_exodus, second run: element block 2 had no num_el_in_blk2). An object whose
+// status is not 0 (a null object) needs its size dimension.
+void check_object_sizes(const NetcdfFile& file) {
+    struct Kind {
+        const char* what;
+        const char* count;
+        const char* status;
+        const char* size;
+    };
+    const Kind kinds[] = {{"element block", "num_el_blk", "eb_status", "num_el_in_blk"},
+                          {"edge block", "num_ed_blk", "ed_status", "num_ed_in_blk"},
+                          {"face block", "num_fa_blk", "fa_status", "num_fa_in_blk"},
+                          {"node set", "num_node_sets", "ns_status", "num_nod_ns"},
+                          {"side set", "num_side_sets", "ss_status", "num_side_ss"},
+                          {"edge set", "num_edge_sets", "es_status", "num_edge_es"},
+                          {"face set", "num_face_sets", "fs_status", "num_face_fs"},
+                          {"element set", "num_elem_sets", "els_status", "num_ele_els"}};
+    for (const Kind& kind : kinds) {
+        const std::size_t count = file.length(kind.count);
+        if (count == 0) continue;
+        // The status of each object (1 when the file has none, as the library reads it).
+        std::vector<long long> status(count, 1);
+        if (const std::optional<int> v = file.var(kind.status)) {
+            expect_shape(file, *v, kind.status, {kind.count});
+            file.for_each_value(*v, kind.status,
+                                [&](std::size_t i, long long value) { status[i] = value; });
+        }
+        for (std::size_t i = 0; i < count; ++i) {
+            const std::string size = kind.size + std::to_string(i + 1);
+            if (status[i] != 0 && !file.dim(size)) {
+                fail(ErrorCode::kParse,
+                     "Exodus II " + std::string(kind.what) + " " + std::to_string(i + 1) +
+                         " has no size ('" + size + "') and is not a null " + kind.what + " (" +
+                         kind.status + " " + std::to_string(status[i]) + ")",
+                     file.where());
+            }
+        }
+    }
+}
+
 // Result variables need their names: VTK's reader gives the Exodus library name buffers of its
 // own (malloc'd, not cleared) and runs strlen over them (RemoveBeginningAndTrailingSpaces); when
 // a count of variables (num_nod_var, ...) has no names variable, the library warns and leaves
@@ -377,6 +420,7 @@ void check_exodus_contents(const fs::path& path) {
         if (const std::optional<int> v = file.var(map)) expect_shape(file, *v, map, {"num_elem"});
     }
 
+    check_object_sizes(file);
     check_result_variable_names(file);
     const std::vector<std::size_t> face_blocks = check_face_blocks(file, num_nodes);
     std::size_t total = 0;

@@ -43,6 +43,7 @@ struct ExodusSpec {
     std::vector<int> node_set = {1, 5};
     bool nodal_names = true;      // name_nod_var
     std::string extra_count_dim;  // a count of result variables (num_glo_var ...) of 1, no names
+    std::string missing_dim;      // a dimension written under another name
 };
 
 // Writes a small Exodus II file (one block of TETRA4, a nodal variable 'temp' = 10 * node id,
@@ -53,7 +54,8 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     nc(nc_create(path.c_str(), NC_CLOBBER | format, &f), "create");
     const auto dim = [&](const char* name, std::size_t n) {
         int id = -1;
-        nc(nc_def_dim(f, name, n, &id), name);
+        const std::string written = name == spec.missing_dim ? "renamed_" + spec.missing_dim : name;
+        nc(nc_def_dim(f, written.c_str(), n, &id), name);
         return id;
     };
     const float api = 8.03f;
@@ -213,6 +215,18 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
          "'num_elem_var' is 1 but the file has no 'name_elem_var'"},
         {"global_variables_without_names", [](ExodusSpec& s) { s.extra_count_dim = "num_glo_var"; },
          "'num_glo_var' is 1 but the file has no 'name_glo_var'"},
+        // fuzz_exodus, second run: a block the Exodus library cannot describe (no
+        // num_el_in_blk2) is skipped but counted by VTK's reader, which then dereferences a null
+        // naming the blocks (SEGV in GetSortedObjectInfo; exit 139 from vtkExodusIIReader alone).
+        // Sets without their size are 'Could not read set parameters.' in VTK; the same message
+        // here.
+        {"block_without_size", [](ExodusSpec& s) { s.missing_dim = "num_el_in_blk1"; },
+         "element block 1 has no size ('num_el_in_blk1') and is not a null element block "
+         "(eb_status 1)"},
+        {"node_set_without_size", [](ExodusSpec& s) { s.missing_dim = "num_nod_ns1"; },
+         "node set 1 has no size ('num_nod_ns1')"},
+        {"side_set_without_size", [](ExodusSpec& s) { s.missing_dim = "num_side_ss1"; },
+         "side set 1 has no size ('num_side_ss1')"},
     };
     TempDir dir;
     for (const Format& format : kFormats) {
