@@ -2,7 +2,8 @@
 // file takes (our pre-checks and parsers, then VTK where it reads). There is no in-memory entry
 // point, so each input is written to a temporary file named with TR_FUZZ_EXTENSION (".vtk":
 // the legacy reader, ".vtu": the XML reader, ".csv": point clouds, ".mesh": MFEM, ".exo":
-// Exodus II through netCDF), in /dev/shm when there is one. A mesh read must pass the checks of checks.h (check_mesh).
+// Exodus II through netCDF), in /dev/shm when there is one. A mesh read must pass the checks of
+// checks.h (check_mesh).
 
 #include <io/read_mesh.h>
 
