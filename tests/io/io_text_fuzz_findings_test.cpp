@@ -173,6 +173,47 @@ TEST(IoTextFuzzFindings, PlyAsciiLineShortOfProperties) {
         << message;
 }
 
+// fuzz_surface, seventeenth run (3.14M executions): an ASCII PLY whose face element has a list
+// property VTK does not read ('property list uchar int vertex_3') besides vertex_indices:
+// VTK 9.1's ASCII reader segfaults in ascii_get_element (measured with each of: the extra list
+// before or after vertex_indices, of ints or floats, in the face or the vertex element). It
+// reads the face's vertex_indices (or vertex_index) and texcoord lists; binary files with other
+// lists read without a fault. Now "ASCII PLY: list property 'vertex_3' of element 'face' is not
+// one VTK 9.1 reads".
+TEST(IoTextFuzzFindings, PlyAsciiListVtkDoesNotReadIsAnError) {
+    TempDir dir;
+    const std::string vertices =
+        "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+    const auto ply = [&](const std::string& face_properties, const std::string& face) {
+        return "ply\nformat ascii 1.0\n" + vertices + "element face 1\n" + face_properties +
+               "end_header\n0 0 0\n1 0 0\n0 1 0\n" + face + "\n";
+    };
+    // Read: vertex_indices, vertex_index, with texcoord.
+    for (const auto& [properties, face] : std::vector<std::pair<std::string, std::string>>{
+             {"property list uchar int vertex_indices\n", "3 0 1 2"},
+             {"property list uchar int vertex_index\n", "3 0 1 2"},
+             {"property list uchar int vertex_indices\nproperty list uchar float texcoord\n",
+              "3 0 1 2 6 0 0 1 0 0 1"}}) {
+        write_file(dir / "ok.ply", ply(properties, face));
+        auto ok = read_surface(dir / "ok.ply");
+        ASSERT_TRUE(ok.ok()) << ok.error().to_string();
+        EXPECT_EQ(ok.value().triangles.size(), 1u);
+    }
+    for (const auto& [properties, face] : std::vector<std::pair<std::string, std::string>>{
+             {"property list uchar int vertex_3\nproperty list uchar int vertex_indices\n",
+              "0 3 0 1 2"},
+             {"property list uchar int vertex_indices\nproperty list uchar float vertex_3\n",
+              "3 0 1 2 2 0.5 0.5"}}) {
+        write_file(dir / "extra.ply", ply(properties, face));
+        const std::string message =
+            expect_error(read_surface(dir / "extra.ply"), dir / "extra.ply");
+        EXPECT_NE(message.find("ASCII PLY: list property 'vertex_3' of element 'face' is not one "
+                               "VTK 9.1 reads"),
+                  std::string::npos)
+            << message;
+    }
+}
+
 TEST(IoTextFuzzFindings, PlyFaceCornerOutOfRange) {
     TempDir dir;
     // fuzz_surface, second run: a binary PLY whose face list read ASCII text as big-endian ints
