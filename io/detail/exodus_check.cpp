@@ -225,6 +225,19 @@ void expect_refs_in_range(const NetcdfFile& file, const std::string& owner,
     });
 }
 
+// A block's connectivity names its element type (attribute elem_type): without it the Exodus
+// library cannot describe the block, and VTK's reader skips it but still counts it, then
+// dereferences a null naming the blocks (GetSortedObjectInfo; fuzz_exodus, third run).
+void expect_element_type(const NetcdfFile& file, int conn, const std::string& owner,
+                         const std::string& conn_name) {
+    if (file.upper_text_attribute(conn, "elem_type").find_first_not_of(" ") == std::string::npos) {
+        fail(ErrorCode::kParse,
+             "Exodus II " + owner + " (" + conn_name +
+                 ") has no element type (its text attribute 'elem_type')",
+             file.where());
+    }
+}
+
 // Face blocks (`fbconn<k>`): the faces polyhedral elements are made of. An NSIDED block lists
 // each face's node count in `fbepecnt<k>`; any other has `num_nod_per_fa<k>` nodes a face. Every
 // node id within the file's node count. Returns the number of faces of each block.
@@ -247,6 +260,7 @@ std::vector<std::size_t> check_face_blocks(const NetcdfFile& file, std::size_t n
             }
             continue;
         }
+        expect_element_type(file, *conn, owner, conn_name);
         if (file.var("fbepecnt" + n)) {
             // NSIDED: a face has at least 3 nodes.
             expect_counts_cover_list(file, owner, "fbepecnt" + n, "num_fa_in_blk" + n, conn_name,
@@ -376,6 +390,7 @@ std::size_t check_block(const NetcdfFile& file, std::size_t b, std::size_t num_n
         }
         return 0;
     }
+    expect_element_type(file, *conn, block, conn_name);
     if (file.var("ebepecnt" + n)) {
         // N-sided block: one node count per element, summing to the list length.
         expect_counts_cover_list(file, block, "ebepecnt" + n, "num_el_in_blk" + n, conn_name,

@@ -44,6 +44,7 @@ struct ExodusSpec {
     bool nodal_names = true;      // name_nod_var
     std::string extra_count_dim;  // a count of result variables (num_glo_var ...) of 1, no names
     std::string missing_dim;      // a dimension written under another name
+    bool element_type = true;     // connect1's elem_type attribute
 };
 
 // Writes a small Exodus II file (one block of TETRA4, a nodal variable 'temp' = 10 * node id,
@@ -106,7 +107,7 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     const int v_coor_names = var("coor_names", NC_CHAR, {d_num_dim, d_len_name});
     const int v_eb_names = var("eb_names", NC_CHAR, {d_blocks, d_len_name});
     const int v_connect = var("connect1", NC_INT, {d_in_blk, d_per_el});
-    nc(nc_put_att_text(f, v_connect, "elem_type", 6, "TETRA4"), "att");
+    if (spec.element_type) nc(nc_put_att_text(f, v_connect, "elem_type", 6, "TETRA4"), "att");
     const int v_elem_ss = var("elem_ss1", NC_INT, {d_side_ss});
     const int v_side_ss = var("side_ss1", NC_INT, {d_side_ss});
     const int v_node_ns = var("node_ns1", NC_INT, {d_node_ns});
@@ -227,6 +228,9 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
          "node set 1 has no size ('num_nod_ns1')"},
         {"side_set_without_size", [](ExodusSpec& s) { s.missing_dim = "num_side_ss1"; },
          "side set 1 has no size ('num_side_ss1')"},
+        // fuzz_exodus, third run: connect2 without its elem_type attribute, the same crash.
+        {"block_without_element_type", [](ExodusSpec& s) { s.element_type = false; },
+         "element block 1 (connect1) has no element type (its text attribute 'elem_type')"},
     };
     TempDir dir;
     for (const Format& format : kFormats) {
