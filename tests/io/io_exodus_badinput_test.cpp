@@ -43,6 +43,7 @@ struct ExodusSpec {
     std::vector<int> node_set = {1, 5};
     bool nodal_names = true;      // name_nod_var
     std::string extra_count_dim;  // a count of result variables (num_glo_var ...) of 1, no names
+    std::size_t extra_count = 1;  // its length
     std::string missing_dim;      // a dimension written under another name
     bool element_type = true;     // connect1's elem_type attribute
 };
@@ -113,7 +114,10 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     const int v_node_ns = var("node_ns1", NC_INT, {d_node_ns});
     const int v_nod_var_names =
         spec.nodal_names ? var("name_nod_var", NC_CHAR, {d_nod_var, d_len_name}) : -1;
-    if (!spec.extra_count_dim.empty()) dim(spec.extra_count_dim.c_str(), 1);
+    if (!spec.extra_count_dim.empty()) {
+        int id = -1;
+        nc(nc_def_dim(f, spec.extra_count_dim.c_str(), spec.extra_count, &id), "extra dimension");
+    }
     const int v_temp = var("vals_nod_var1", NC_DOUBLE, {d_time, d_nodes});
     nc(nc_enddef(f), "enddef");
 
@@ -228,6 +232,15 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
          "node set 1 has no size ('num_nod_ns1')"},
         {"side_set_without_size", [](ExodusSpec& s) { s.missing_dim = "num_side_ss1"; },
          "side set 1 has no size ('num_side_ss1')"},
+        // fuzz_exodus, fourth run: num_el_blk = 1128547841 in a 412-byte file made the pre-check
+        // allocate a status per block (9 GB: libFuzzer out of memory).
+        {"block_count_beyond_the_file",
+         [](ExodusSpec& s) {
+             s.missing_dim = "num_el_blk";
+             s.extra_count_dim = "num_el_blk";
+             s.extra_count = 1128547841;
+         },
+         "Exodus II num_el_blk = 1128547841 is not plausible for a file of"},
         // fuzz_exodus, third run: connect2 without its elem_type attribute, the same crash.
         {"block_without_element_type", [](ExodusSpec& s) { s.element_type = false; },
          "element block 1 (connect1) has no element type (its text attribute 'elem_type')"},
