@@ -23,8 +23,11 @@ ensure_packages
 jobs=$(nproc)
 if [ $sanitize -eq 1 ]; then
   build=build-sanitize
+  # -O1 -g1 (line tables, enough for the sanitizers' stack traces): compiles in about half the
+  # time of -O2 -g (measured on a CGAL and a VTK translation unit under ASan).
   cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTETRENDER_SANITIZE=ON \
-        -DTETRENDER_BUILD_BENCH=OFF
+        -DTETRENDER_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+        -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
   # VTK's own singletons are never freed: do not call them leaks of ours.
   export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
