@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <netcdf.h>
 #include <optional>
 #include <vector>
@@ -78,6 +80,20 @@ class NetcdfFile {
         check(nc_get_att_text(id_, var_id, name, text.data()), "attribute");
         for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
         return text;
+    }
+    // A numeric global attribute's first value; nullopt when missing, text or empty.
+    std::optional<double> global_number(const char* name) const {
+        nc_type type = NC_NAT;
+        std::size_t n = 0;
+        if (nc_inq_att(id_, NC_GLOBAL, name, &type, &n) != NC_NOERR || type == NC_CHAR ||
+            type == NC_STRING || n == 0) {
+            return std::nullopt;
+        }
+        std::vector<double> values(n);
+        if (nc_get_att_double(id_, NC_GLOBAL, name, values.data()) != NC_NOERR) {
+            return std::nullopt;
+        }
+        return values[0];
     }
     bool is_integer(int var_id) const {
         nc_type type = NC_NAT;
@@ -422,8 +438,57 @@ std::size_t check_block(const NetcdfFile& file, std::size_t b, std::size_t num_n
 
 }  // namespace
 
+// The global attributes the Exodus library's ex_open reads after opening the file: without a
+// 'version' of at least 2.0 and a floating-point word size of 4 or 8 it gives up without
+// closing the netCDF file, so each such file read left a descriptor and the library's state
+// behind (fuzz_exodus, finding 38: a few hundred of them in one process crashed VTK's reader).
+std::string short_number(double value) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", value);
+    return text;
+}
+
+void check_global_attributes(const NetcdfFile& file) {
+    const std::optional<double> version = file.global_number("version");
+    if (!version) {
+        fail(ErrorCode::kParse, "Exodus II: the global attribute 'version' (a number) is missing",
+             file.where());
+    }
+    if (!(*version >= 2.0) || !std::isfinite(*version)) {
+        fail(ErrorCode::kUnsupported,
+             "Exodus II: version " + short_number(*version) +
+                 " (the global attribute 'version'); files before version 2.0 are not read",
+             file.where());
+    }
+    std::optional<double> word_size = file.global_number("floating_point_word_size");
+    if (!word_size) word_size = file.global_number("floating point word size");  // before 2.02
+    if (!word_size) {
+        fail(ErrorCode::kParse,
+             "Exodus II: the global attribute 'floating_point_word_size' (4 or 8) is missing",
+             file.where());
+    }
+    if (*word_size != 4 && *word_size != 8) {
+        fail(
+            ErrorCode::kParse,
+            "Exodus II: 'floating_point_word_size' is " + short_number(*word_size) + ", not 4 or 8",
+            file.where());
+    }
+}
+
 void check_exodus_contents(const fs::path& path) {
     const NetcdfFile file(path);
+    check_global_attributes(file);
+    // VTK's reader keeps three coordinates a node: a larger num_dim corrupted its heap (a
+    // 'double free or corruption' abort reading one file, and crashes later in the process).
+    const std::optional<int> num_dim = file.dim("num_dim");
+    if (!num_dim) {
+        fail(ErrorCode::kParse, "Exodus II: the dimension 'num_dim' is missing", file.where());
+    }
+    if (const std::size_t n = file.dim_length(*num_dim); n < 1 || n > 3) {
+        fail(ErrorCode::kParse,
+             "Exodus II: num_dim is " + std::to_string(n) + "; a mesh has 1, 2 or 3 dimensions",
+             file.where());
+    }
     const std::size_t num_nodes = file.length("num_nodes");
     const std::size_t num_elem = file.length("num_elem");
     const std::size_t num_blocks = file.length("num_el_blk");

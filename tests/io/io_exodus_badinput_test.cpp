@@ -10,9 +10,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 #include <netcdf.h>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -46,6 +48,9 @@ struct ExodusSpec {
     std::size_t extra_count = 1;  // its length
     std::string missing_dim;      // a dimension written under another name
     bool element_type = true;     // connect1's elem_type attribute
+    std::optional<float> version = 8.03f;  // the global 'version' (none: not written)
+    std::optional<int> word_size = 8;      // 'floating_point_word_size' (none: not written)
+    std::size_t num_dim = 3;
 };
 
 // Writes a small Exodus II file (one block of TETRA4, a nodal variable 'temp' = 10 * node id,
@@ -61,10 +66,15 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
         return id;
     };
     const float api = 8.03f;
-    const int word_size = 8, file_size = 1, name_length = 32;
+    const int file_size = 1, name_length = 32;
     nc(nc_put_att_float(f, NC_GLOBAL, "api_version", NC_FLOAT, 1, &api), "att");
-    nc(nc_put_att_float(f, NC_GLOBAL, "version", NC_FLOAT, 1, &api), "att");
-    nc(nc_put_att_int(f, NC_GLOBAL, "floating_point_word_size", NC_INT, 1, &word_size), "att");
+    if (spec.version) {
+        nc(nc_put_att_float(f, NC_GLOBAL, "version", NC_FLOAT, 1, &*spec.version), "att");
+    }
+    if (spec.word_size) {
+        nc(nc_put_att_int(f, NC_GLOBAL, "floating_point_word_size", NC_INT, 1, &*spec.word_size),
+           "att");
+    }
     nc(nc_put_att_int(f, NC_GLOBAL, "file_size", NC_INT, 1, &file_size), "att");
     nc(nc_put_att_int(f, NC_GLOBAL, "maximum_name_length", NC_INT, 1, &name_length), "att");
     nc(nc_put_att_text(f, NC_GLOBAL, "title", 4, "test"), "att");
@@ -75,7 +85,7 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     (void)d_len_line;
     dim("four", 4);
     const int d_time = dim("time_step", NC_UNLIMITED);
-    const int d_num_dim = dim("num_dim", 3);
+    const int d_num_dim = dim("num_dim", spec.num_dim);
     const int d_nodes = dim("num_nodes", num_nodes);
     dim("num_elem", spec.num_elem_dim);
     const int d_blocks = dim("num_el_blk", 1);
@@ -134,7 +144,7 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     nc(nc_put_var_double(f, v_x, spec.x.data()), "coordx");
     nc(nc_put_var_double(f, v_y, spec.y.data()), "coordy");
     nc(nc_put_var_double(f, v_z, spec.z.data()), "coordz");
-    std::vector<char> names(3 * 33, '\0');
+    std::vector<char> names(std::max<std::size_t>(spec.num_dim, 3) * 33, '\0');
     names[0] = 'x';
     names[33] = 'y';
     names[66] = 'z';
@@ -244,6 +254,22 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
         // fuzz_exodus, third run: connect2 without its elem_type attribute, the same crash.
         {"block_without_element_type", [](ExodusSpec& s) { s.element_type = false; },
          "element block 1 (connect1) has no element type (its text attribute 'elem_type')"},
+        // fuzz_exodus, finding 38: without these the Exodus library's ex_open fails and leaves
+        // the netCDF file open (a descriptor per read; a few hundred crashed VTK's reader).
+        {"no_version", [](ExodusSpec& s) { s.version.reset(); },
+         "Exodus II: the global attribute 'version' (a number) is missing"},
+        {"version_before_2", [](ExodusSpec& s) { s.version = 1.5f; },
+         "Exodus II: version 1.5 (the global attribute 'version'); files before version 2.0"},
+        {"no_word_size", [](ExodusSpec& s) { s.word_size.reset(); },
+         "the global attribute 'floating_point_word_size' (4 or 8) is missing"},
+        {"word_size_5", [](ExodusSpec& s) { s.word_size = 5; },
+         "Exodus II: 'floating_point_word_size' is 5, not 4 or 8"},
+        // fuzz_exodus corpus: num_dim 1021 made VTK's reader corrupt its heap (a Release
+        // `tetrender info` aborted 'double free or corruption'; later inputs crashed: 37, 38).
+        {"num_dim_1021", [](ExodusSpec& s) { s.num_dim = 1021; },
+         "Exodus II: num_dim is 1021; a mesh has 1, 2 or 3 dimensions"},
+        {"num_dim_missing", [](ExodusSpec& s) { s.missing_dim = "num_dim"; },
+         "Exodus II: the dimension 'num_dim' is missing"},
     };
     TempDir dir;
     for (const Format& format : kFormats) {
@@ -255,6 +281,40 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
             write_exodus(path, spec, format.flags);
             const std::string message = expect_error(read_mesh(path), path);
             EXPECT_NE(message.find(c.message_part), std::string::npos) << message;
+        }
+    }
+}
+
+// The number of this process's open file descriptors.
+std::size_t open_descriptors() {
+    std::size_t n = 0;
+    for ([[maybe_unused]] const auto& entry : fs::directory_iterator("/proc/self/fd")) ++n;
+    return n;
+}
+
+// A failed read closes what it opened: the files ex_open gave up on (finding 38) and the
+// others, read ten times each in this process.
+TEST(BadInputExodus, FailedReadsLeaveNoFileOpen) {
+    const std::vector<std::function<void(ExodusSpec&)>> corruptions = {
+        [](ExodusSpec& s) { s.version.reset(); },
+        [](ExodusSpec& s) { s.version = 1.5f; },
+        [](ExodusSpec& s) { s.word_size.reset(); },
+        [](ExodusSpec& s) { s.word_size = 5; },
+        [](ExodusSpec& s) { s.connect[2] = 1000000; },
+        [](ExodusSpec& s) { s.element_type = false; },
+        [](ExodusSpec& s) { s.num_dim = 1021; },
+    };
+    TempDir dir;
+    for (const Format& format : kFormats) {
+        for (std::size_t c = 0; c < corruptions.size(); ++c) {
+            SCOPED_TRACE(std::string(format.name) + " corruption " + std::to_string(c));
+            ExodusSpec spec;
+            corruptions[c](spec);
+            const fs::path path = dir / ("leak_" + std::to_string(c) + format.name + ".exo");
+            write_exodus(path, spec, format.flags);
+            const std::size_t before = open_descriptors();
+            for (int i = 0; i < 10; ++i) EXPECT_FALSE(read_mesh(path).ok());
+            EXPECT_EQ(open_descriptors(), before);
         }
     }
 }
