@@ -333,6 +333,15 @@ void check_object_sizes(const NetcdfFile& file, std::uintmax_t file_size) {
                           {"edge set", "num_edge_sets", "es_status", "num_edge_es"},
                           {"face set", "num_face_sets", "fs_status", "num_face_fs"},
                           {"element set", "num_elem_sets", "els_status", "num_ele_els"}};
+    // Each time step has its time stored in the file (at least 4 bytes): a fixed time_step of
+    // 1073741824 in a small file made VTK's reader allocate until the system killed it (24 GB,
+    // fuzz_exodus, 40).
+    if (const std::size_t steps = file.length("time_step"); steps > file_size) {
+        fail(ErrorCode::kParse,
+             "Exodus II time_step = " + std::to_string(steps) + " is not plausible for a file of " +
+                 std::to_string(file_size) + " bytes",
+             file.where());
+    }
     for (const Kind& kind : kinds) {
         const std::size_t count = file.length(kind.count);
         if (count == 0) continue;

@@ -245,6 +245,16 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
          "side set 1 has no size ('num_side_ss1')"},
         // fuzz_exodus, fourth run: num_el_blk = 1128547841 in a 412-byte file made the pre-check
         // allocate a status per block (9 GB: libFuzzer out of memory).
+        // fuzz_exodus, 40: a fixed time_step of 1073741824 made VTK's reader allocate until
+        // the system killed it (24 GB). Here the file's own time dimension is renamed and an
+        // unused time_step of that length added.
+        {"time_steps_beyond_the_file",
+         [](ExodusSpec& s) {
+             s.missing_dim = "time_step";
+             s.extra_count_dim = "time_step";
+             s.extra_count = 1073741824;
+         },
+         "Exodus II time_step = 1073741824 is not plausible for a file of"},
         {"block_count_beyond_the_file",
          [](ExodusSpec& s) {
              s.missing_dim = "num_el_blk";
