@@ -165,26 +165,37 @@ Result<SceneFlow> scene_flow(Pipeline& pipeline, const Scene& scene) {
     return SceneFlow{std::move(domain), std::move(velocity).value()};
 }
 
+// The keys both animated methods take, with the same rules.
+const KeyRule kVectorsRule{"vectors", Kind::kString, 0,
+                           0,         false,         "the name of a 3-component point array"};
+const KeyRule kDtRule{"dt", Kind::kNumber, 0, 1e300, true, "a number > 0"};
+const KeyRule kStepsRule{"steps",   Kind::kInteger, 0,
+                         kMaxSteps, false,          "an integer from 0 to 100000"};
+const KeyRule kFrameRule{"frame",   Kind::kInteger, 0,
+                         kMaxSteps, false,          "an integer from 0 to steps"};
+const KeyRule kUnsteadyRule{"unsteady", Kind::kBool, 0, 0, false, "true or false"};
+const KeyRule kStartTimeRule{"start_time", Kind::kNumber, -1e300, 1e300, false, "a number"};
+
 class TextureAdvectionMethod final : public RenderMethod {
   public:
     std::string_view name() const override { return "texture-advection"; }
 
     Status check(const Scene& scene, const RenderOptions& options) const override {
-        TR_TRY_STATUS(check_keys(
-            scene, name(),
-            {{"vectors", Kind::kString, 0, 0, false, "the name of a 3-component point array"},
-             {"slices", Kind::kLists, 0, 0, false,
-              "a list of slices [[px, py, pz, nx, ny, nz], ...]"},
-             {"steps", Kind::kInteger, 0, kMaxSteps, false, "an integer from 0 to 100000"},
-             {"frame", Kind::kInteger, 0, kMaxSteps, false, "an integer from 0 to steps"},
-             {"dt", Kind::kNumber, 0, 1e300, true, "a number > 0"},
-             {"unsteady", Kind::kBool, 0, 0, false, "true or false"},
-             {"start_time", Kind::kNumber, -1e300, 1e300, false, "a number"},
-             {"advection", Kind::kString, 0, 0, false, "\"backward\" or \"forward\""},
-             {"reinject", Kind::kInteger, 0, 1e6, false, "an even integer >= 0"},
-             {"resolution", Kind::kInteger, 1, 8192, false, "an integer from 1 to 8192"},
-             {"sheet_opacity", Kind::kNumber, 0, 1, true, "a number in (0, 1]"}},
-            {"vectors"}));
+        TR_TRY_STATUS(
+            check_keys(scene, name(),
+                       {kVectorsRule,
+                        {"slices", Kind::kLists, 0, 0, false,
+                         "a list of slices [[px, py, pz, nx, ny, nz], ...]"},
+                        kStepsRule,
+                        kFrameRule,
+                        kDtRule,
+                        kUnsteadyRule,
+                        kStartTimeRule,
+                        {"advection", Kind::kString, 0, 0, false, "\"backward\" or \"forward\""},
+                        {"reinject", Kind::kInteger, 0, 1e6, false, "an even integer >= 0"},
+                        {"resolution", Kind::kInteger, 1, 8192, false, "an integer from 1 to 8192"},
+                        {"sheet_opacity", Kind::kNumber, 0, 1, true, "a number in (0, 1]"}},
+                       {"vectors"}));
         const std::string advection = string_key(scene, "advection", "backward");
         if (advection != "backward" && advection != "forward") {
             return method_option_error(scene, "advection", "expected \"backward\" or \"forward\"");
@@ -328,18 +339,18 @@ class SpotNoiseMethod final : public RenderMethod {
     Status check(const Scene& scene, const RenderOptions& options) const override {
         TR_TRY_STATUS(check_keys(
             scene, name(),
-            {{"vectors", Kind::kString, 0, 0, false, "the name of a 3-component point array"},
+            {kVectorsRule,
              {"scalar", Kind::kString, 0, 0, false, "the name of a 1-component point array"},
              {"iso", Kind::kNumber, -1e308, 1e308, false, "a number"},
              {"band", Kind::kNumber, 0, 1e300, true, "a number > 0"},
              {"count", Kind::kInteger, 1, static_cast<double>(kMaxSpots), false,
               "an integer from 1 to 10000000"},
-             {"dt", Kind::kNumber, 0, 1e300, true, "a number > 0"},
-             {"steps", Kind::kInteger, 0, kMaxSteps, false, "an integer from 0 to 100000"},
-             {"frame", Kind::kInteger, 0, kMaxSteps, false, "an integer from 0 to steps"},
+             kDtRule,
+             kStepsRule,
+             kFrameRule,
              {"lifetime", Kind::kInteger, 0, 1e6, false, "an integer >= 0"},
-             {"unsteady", Kind::kBool, 0, 0, false, "true or false"},
-             {"start_time", Kind::kNumber, -1e300, 1e300, false, "a number"},
+             kUnsteadyRule,
+             kStartTimeRule,
              {"spot_opacity", Kind::kNumber, 0, 1e3, true, "a number > 0"}},
             {"vectors", "iso"}));
         TR_TRY_STATUS(check_frame(scene));
