@@ -22,11 +22,13 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
     const Vec3 axis = glm::normalize(home.view_up);
     FlowControls* flow = view.flow_shown() ? view.flow() : nullptr;
     // Particle-based: each frame waits for its view's first batch, the last for all of them.
-    const bool particles = view.particle_mode() && !flow && !view.fused();
+    const bool animated = view.animated() && !flow && !view.fused();
+    const bool particles = view.particle_mode() && !flow && !view.fused() && !animated;
     const int target = view.particles().target();
     const int batch = std::min(vs.pbvr.batch_for(view.mode()), target);
     std::optional<PbvrFrame> shown;
     std::optional<FusedFrame> fused;
+    AnimationFrames animation;
     double frame_ms = 0, sort_ms = 0, classify_ms = 0, raster_ms = 0;
     std::size_t sorts = 0, drawn = 0;
     std::uint64_t last_seen = 0;
@@ -50,6 +52,15 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
             if (!fused || !fused->error.empty()) {
                 return apps::report_error(
                     make_error(ErrorCode::kInternal, fused ? fused->error : "no fused picture"));
+            }
+        } else if (animated) {
+            // Frame i of the method's frames 0 .. steps (i mod steps + 1), from one render while
+            // the camera stays (a turning camera starts the frames over at each view).
+            animation = view.draw_animation(camera, width, height, i);
+            if (static_cast<int>(animation.frames.size()) <= i % animation.total) {
+                return apps::report_error(
+                    make_error(ErrorCode::kInternal,
+                               animation.error.empty() ? "no animation frame" : animation.error));
             }
         } else if (particles) {
             view.set_splat_frame(i);  // vector splats: frame i of the texture cycle
@@ -111,6 +122,16 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
                      f.exact ? "exact picture" : "pbvr-image picture", f.repetitions, f.batches,
                      f.mean_batch_ms, f.exact_ms, f.setup_ms, f.particles, f.fragments,
                      f.overlap_intervals, width, height);
+        return apps::kExitOk;
+    }
+    if (animated) {
+        std::fprintf(stderr,
+                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), %s: frame i of "
+                     "its %d frames at frame i, %zu rendered for the last view, the first in "
+                     "%.1f ms (setup), %.1f ms a frame after it, %dx%d\n",
+                     frames, frame_ms / frames, 1000.0 * frames / frame_ms,
+                     view_method_name(view.mode()).data(), animation.total, animation.frames.size(),
+                     animation.first_ms, animation.frame_ms, width, height);
         return apps::kExitOk;
     }
     if (particles && view.mode() == ViewMethod::kSplat) {

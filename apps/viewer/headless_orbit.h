@@ -21,8 +21,10 @@ struct HeadlessOptions {
 // view's order (waited for), and a shown flow volume grown first (one layer a frame, every layer in
 // the last). In a particle-based mode each frame restarts the accumulation for its view and waits
 // for its first batch; the last waits for the target's repetitions (the worker's target),
-// accumulated in batches as interactively. With `panel`, the panel is drawn into the last frame.
-// Writes the last frame and prints one line of timings to stderr. Returns the exit code:
+// accumulated in batches as interactively. An animated method (texture-advection, spot-noise)
+// shows at frame i its frame i mod (steps + 1), waited for: with no orbit, the frames of one
+// render, `tetrender render SCENE --frames DIR`'s. With `panel`, the panel is drawn into the last
+// frame. Writes the last frame and prints one line of timings to stderr. Returns the exit code:
 // apps::kExitOk, or apps::kExitError (reported) when growth or a batch of particles fails or the
 // picture cannot be written.
 int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptions& options);

@@ -38,8 +38,12 @@ int run_interactive(GLFWwindow* window, VolumeView& view, ViewerPanel& panel,
             view.set_fused_mode(
                 static_cast<FusedMode>((static_cast<int>(view.fused_mode()) + 1) % 3));
         } else if (actions.next_method) {
-            view.set_mode(
-                static_cast<ViewMethod>((static_cast<int>(view.mode()) + 1) % kViewMethods));
+            // The next method the view can draw (an animated one only when it is the scene's).
+            int next = static_cast<int>(view.mode());
+            do {
+                next = (next + 1) % kViewMethods;
+            } while (!view.available(static_cast<ViewMethod>(next)));
+            view.set_mode(static_cast<ViewMethod>(next));
         }
         if (actions.toggle_keys) {
             panel.toggle_keys();

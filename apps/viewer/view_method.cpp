@@ -6,8 +6,8 @@
 namespace tr::viewer {
 namespace {
 
-constexpr std::string_view kNames[] = {"projected-tetrahedra", "pbvr-image", "pbvr-object",
-                                       "splat"};
+constexpr std::string_view kNames[] = {"projected-tetrahedra", "pbvr-image", "pbvr-object", "splat",
+                                       "texture-advection",    "spot-noise"};
 
 // The method's own option `key` (checked by Pipeline::check before it is read here).
 const MethodOption* option(const MethodSpec& spec, const std::string& key) {
@@ -37,7 +37,7 @@ Result<ResolvedMethod> resolve_method(const Pipeline& pipeline, const Scene& sce
         return make_error(ErrorCode::kInvalidArgument,
                           what + "'" + name +
                               "' is not drawn by the viewer (projected-tetrahedra, pbvr-image, "
-                              "pbvr-object, splat)");
+                              "pbvr-object, splat, texture-advection, spot-noise)");
     };
     // The scene's method, checked as `tetrender render` checks it (without the flow volume,
     // which the viewer draws by projected tetrahedra whatever the mode).
@@ -96,6 +96,12 @@ Result<ResolvedMethod> resolve_method(const Pipeline& pipeline, const Scene& sce
         }
     }
     if (resolved.method == ViewMethod::kSplat) pbvr.splat = splat_settings(checked);
+    if (animated_method(resolved.method)) {
+        pbvr.animation = *checked.method;
+        if (const MethodOption* o = option(*checked.method, "steps")) {
+            pbvr.animation_steps = static_cast<int>(std::get<std::int64_t>(*o));
+        }
+    }
     return resolved;
 }
 

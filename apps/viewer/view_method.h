@@ -1,7 +1,8 @@
 #pragma once
 // How the viewer makes its picture: projected tetrahedra in OpenGL (the default), or by the
 // library on the CPU: particle-based volume rendering (pbvr-image, pbvr-object) or splatting of
-// the mesh's points (splat, with textured vector splats whose cycle plays live); and the CPU
+// the mesh's points (splat, with textured vector splats whose cycle plays live), or the animated
+// flow-texture methods (texture-advection, spot-noise: their frames play in a loop); and the CPU
 // modes' settings, from the command line or a scene file's `method` key.
 
 #include <core/result.h>
@@ -19,12 +20,27 @@
 
 namespace tr::viewer {
 
-enum class ViewMethod { kProjectedTetrahedra, kPbvrImage, kPbvrObject, kSplat };
-inline constexpr int kViewMethods = 4;
+enum class ViewMethod {
+    kProjectedTetrahedra,
+    kPbvrImage,
+    kPbvrObject,
+    kSplat,
+    kTextureAdvection,
+    kSpotNoise
+};
+inline constexpr int kViewMethods = 6;
 
-// "projected-tetrahedra", "pbvr-image", "pbvr-object", "splat": the scene file's method names.
+// "projected-tetrahedra", "pbvr-image", "pbvr-object", "splat", "texture-advection",
+// "spot-noise": the scene file's method names.
 std::string_view view_method_name(ViewMethod method);
 std::optional<ViewMethod> view_method_named(std::string_view name);
+
+// texture-advection and spot-noise: drawn by the library's render of the scene (its method keys
+// live there), frames 0 .. steps (apps/viewer/animation_worker.h). The viewer shows them only
+// when the scene (or --method) names them: the panel cannot switch to them from another method.
+inline bool animated_method(ViewMethod method) {
+    return method == ViewMethod::kTextureAdvection || method == ViewMethod::kSpotNoise;
+}
 
 // Repetitions accumulated when neither the command line nor the scene gives a number: headless
 // as `tetrender render` draws the scene (the pipeline's default), interactively until the view
@@ -49,6 +65,10 @@ struct PbvrSettings {
     // convexification's come after them and are not drawn).
     SplatSettings splat;
     std::size_t splat_points = 0;
+    // texture-advection, spot-noise: the method as checked (its keys, repetitions, seed), and
+    // its `steps` (frames 0 .. steps; the methods' default 100).
+    MethodSpec animation;
+    int animation_steps = 100;
 
     // The batch size for `method`: `batch`, else 16 for pbvr-image (a batch's cost is mostly
     // the segments on the pixel rays, the same for 1 or 16 repetitions) and 4 for pbvr-object
@@ -76,9 +96,10 @@ struct ResolvedMethod {
 // scene's own method keys (pbvr-image's depth and stratified, pbvr-object's subpixel_level and
 // sampling) are checked as `tetrender render` checks them (Pipeline::check) and kept; a
 // command-line method other than the scene's drops them. `pipeline` only checks. Errors:
-// kInvalidArgument for an unknown --method, a method the viewer does not draw (naming the four it
+// kInvalidArgument for an unknown --method, a method the viewer does not draw (naming the six it
 // does), --vectors or --cycle for another method than splat, the pipeline's errors for the
-// scene's method keys.
+// scene's method keys (texture-advection and spot-noise need theirs: `vectors`, and spot-noise's
+// `iso`).
 Result<ResolvedMethod> resolve_method(const Pipeline& pipeline, const Scene& scene,
                                       const MethodArgs& args);
 

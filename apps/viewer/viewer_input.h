@@ -11,8 +11,9 @@ namespace tr::viewer {
 // The list printed at start and on '?', and shown in the keys window.
 constexpr const char* kKeyHelp =
     "keys: left drag rotate | right drag or wheel zoom | middle drag or shift+left drag pan | "
-    "r reset view | m next method (projected tetrahedra, pbvr-image, pbvr-object, splat; several "
-    "volumes: progressive, pbvr-image, exact) | s screenshot | p panel on/off | ? or h this list "
+    "r reset view | m next method (projected tetrahedra, pbvr-image, pbvr-object, splat, and the "
+    "scene's texture-advection or spot-noise; several volumes: progressive, pbvr-image, exact) | "
+    "s screenshot | p panel on/off | ? or h this list "
     "| Esc quit";
 
 // What the keys asked for since the last poll (each on the frame its key went down).

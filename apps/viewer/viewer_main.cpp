@@ -155,7 +155,7 @@ int run(const Args& args) {
     if (!args.method.empty() && !view_method_named(args.method)) {
         std::fprintf(stderr,
                      "tetrender-view: unknown --method '%s' (projected-tetrahedra, pbvr-image, "
-                     "pbvr-object, splat)\n",
+                     "pbvr-object, splat, texture-advection, spot-noise)\n",
                      args.method.c_str());
         return apps::kExitUsage;
     }
@@ -202,6 +202,10 @@ int run(const Args& args) {
     if (!vs.fused.empty()) {
         // Several volumes: drawn fused on the CPU. projected-tetrahedra (the default) is the
         // exact fused picture, as `tetrender render` draws such a scene.
+        if (animated_method(vs.method)) {
+            return fail(std::string(view_method_name(vs.method)) +
+                        ": the viewer draws it for a scene of one volume; use `tetrender render`");
+        }
         if (vs.method == ViewMethod::kPbvrObject) {
             return fail(
                 "pbvr-object: the viewer draws a scene of several volumes with pbvr-image or "
@@ -340,7 +344,9 @@ int main(int argc, char** argv) {
     app.add_option("--method", args.method,
                    "projected-tetrahedra (default, OpenGL), pbvr-image or pbvr-object (particles "
                    "on the CPU, accumulated while the camera is still), splat (the mesh's points "
-                   "splatted on the CPU; default: the scene's). A scene of several volumes is "
+                   "splatted on the CPU), texture-advection or spot-noise (the scene's "
+                   "frames, looping; their keys are the scene's) (default: the scene's). A "
+                   "scene of several volumes is "
                    "drawn fused on the CPU: projected-tetrahedra is then the exact fused "
                    "picture, pbvr-image fused particles");
     app.add_option("--vectors", args.vectors,

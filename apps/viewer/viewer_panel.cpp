@@ -112,13 +112,16 @@ void ViewerPanel::draw_panel() {
     }
     // How the picture is made; projected tetrahedra's sort and integrator.
     if (ImGui::BeginCombo("method", view_method_name(view_.mode()).data())) {
-        for (ViewMethod m : {ViewMethod::kProjectedTetrahedra, ViewMethod::kPbvrImage,
-                             ViewMethod::kPbvrObject, ViewMethod::kSplat}) {
+        for (int i = 0; i < kViewMethods; ++i) {
+            const ViewMethod m = static_cast<ViewMethod>(i);
+            if (!view_.available(m)) continue;
             if (ImGui::Selectable(view_method_name(m).data(), m == view_.mode())) view_.set_mode(m);
         }
         ImGui::EndCombo();
     }
-    if (view_.particle_mode()) {
+    if (view_.animated()) {
+        draw_animation_section();
+    } else if (view_.particle_mode()) {
         draw_particle_section();
     } else {
         const SortMethod methods[] = {SortMethod::kMpvo, SortMethod::kMpvoNonConvex,
@@ -157,6 +160,8 @@ void ViewerPanel::draw_panel() {
         if (view_.particle_mode()) {
             ImGui::TextDisabled("(the flow volume is drawn by projected tetrahedra)");
         }
+    } else if (view_.animated()) {
+        ImGui::Text("frames on the CPU (%zu cells)", vs.sort.mesh().num_real_tets());
     } else if (view_.particle_mode()) {
         ImGui::Text("particles on the CPU (%zu cells)", vs.sort.mesh().num_real_tets());
     } else {
@@ -170,6 +175,21 @@ void ViewerPanel::draw_panel() {
         ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", view_.status().c_str());
     ImGui::TextDisabled("? lists the keys");
     ImGui::End();
+}
+
+void ViewerPanel::draw_animation_section() {
+    const AnimationFrames f = view_.animation().latest();
+    const int arrived = static_cast<int>(f.frames.size());
+    if (!f.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", f.error.c_str());
+    if (view_.animation_frame_shown() < 0) {
+        ImGui::Text("rendering frame 0 of %d (setup)", f.total);
+        return;
+    }
+    ImGui::Text("frame %d of %d, %.0f a second%s", view_.animation_frame_shown(), f.total,
+                VolumeView::kAnimationFps, !view_.animation_current() ? " (previous view)" : "");
+    ImGui::Text("%d of %d rendered%s", arrived, f.total,
+                arrived < f.total && f.error.empty() ? " (rendering)" : "");
+    ImGui::Text("frame 0 in %.1f ms, then %.1f ms a frame", f.first_ms, f.frame_ms);
 }
 
 void ViewerPanel::draw_particle_section() {

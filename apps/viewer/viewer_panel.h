@@ -37,6 +37,8 @@ class ViewerPanel {
     void draw_panel();
     // The particle-based modes: the target, what is accumulated, batch times, kept particles.
     void draw_particle_section();
+    // texture-advection, spot-noise: the frame shown, how many are rendered, their times.
+    void draw_animation_section();
     // A scene of several volumes: a transfer-function section per volume, the fused modes.
     void draw_fused_panel();
 

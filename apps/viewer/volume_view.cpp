@@ -35,10 +35,20 @@ VolumeView::VolumeView(ViewerScene& scene, gl::GlTetRenderer& renderer, Integrat
         fused_mode_ = scene.fused_mode;
         fused_ = std::make_unique<FusedWorker>(std::move(meshes), vs_.opaque.layers(), vs_.pbvr);
     }
+    if (animated_method(vs_.method) && vs_.fused.empty()) {
+        // The library's render of the scene, with the method as resolved; no flow volume (the
+        // methods refuse one: a shown flow volume is drawn by projected tetrahedra).
+        Scene scene = vs_.scene;
+        scene.method = vs_.pbvr.animation;
+        scene.flow_volume.reset();
+        animation_ = std::make_unique<AnimationWorker>(*vs_.pipeline, std::move(scene),
+                                                       vs_.pbvr.animation_steps);
+    }
 }
 
 void VolumeView::set_wake(std::function<void()> wake) {
     if (fused_) fused_->set_on_frame(wake);
+    if (animation_) animation_->set_on_frame(wake);
     pbvr_.set_on_frame(std::move(wake));
 }
 
@@ -161,7 +171,7 @@ bool VolumeView::ParticleKey::operator==(const ParticleKey& o) const {
 }
 
 void VolumeView::set_mode(ViewMethod mode) {
-    if (mode == mode_) return;
+    if (mode == mode_ || !available(mode)) return;
     mode_ = mode;
     invalidate();
 }
@@ -209,6 +219,52 @@ std::optional<PbvrFrame> VolumeView::draw_particles(const Camera& camera, int wi
     return pbvr_shown_;
 }
 
+bool VolumeView::AnimationKey::operator==(const AnimationKey& o) const {
+    const Camera &a = camera, &b = o.camera;
+    return a.position == b.position && a.focal_point == b.focal_point && a.view_up == b.view_up &&
+           a.view_angle == b.view_angle && a.parallel == b.parallel &&
+           a.parallel_scale == b.parallel_scale && width == o.width && height == o.height &&
+           tf_version == o.tf_version && scalar_version == o.scalar_version;
+}
+
+AnimationFrames VolumeView::draw_animation(const Camera& camera, int width, int height, int frame) {
+    const AnimationKey key{camera, width, height, tf_version_, scalar_version_};
+    if (!animation_key_ || !(key == *animation_key_)) {
+        AnimationRequest request;
+        request.camera = camera;
+        request.width = width;
+        request.height = height;
+        request.tf = std::make_shared<const TransferFunction>(vs_.volume().transfer_function);
+        // The panel's scalar (the scene's own component while it is the scene's array).
+        request.scalar = vs_.scalar_name;
+        request.component = vs_.scalar_name == vs_.volume().scalar ? vs_.volume().component : -1;
+        animation_requested_id_ = animation_->request(std::move(request));
+        animation_key_ = key;
+    }
+    const int total = animation_->total();
+    AnimationFrames frames = frame >= 0
+                                 ? animation_->wait_for(animation_requested_id_, frame % total)
+                                 : animation_->latest();
+    const int arrived = static_cast<int>(frames.frames.size());
+    if (arrived == 0) return frames;
+    int shown = 0;
+    if (frame >= 0) {
+        shown = frame % total;
+        if (shown >= arrived) return frames;  // the render failed before it
+    } else {
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+        shown = static_cast<int>(static_cast<std::int64_t>(seconds * kAnimationFps) % arrived);
+    }
+    if (frames.request_id != animation_shown_id_ || shown != animation_shown_frame_) {
+        renderer_.show_image(*frames.frames[static_cast<std::size_t>(shown)]);
+        active_ = &renderer_;
+        animation_shown_id_ = frames.request_id;
+        animation_shown_frame_ = shown;
+    }
+    return frames;
+}
+
 bool VolumeView::DrawnKey::operator==(const DrawnKey& o) const {
     return camera.position == o.camera.position && camera.focal_point == o.camera.focal_point &&
            camera.view_up == o.camera.view_up && camera.parallel_scale == o.camera.parallel_scale &&
@@ -232,6 +288,12 @@ bool VolumeView::draw(const Camera& camera, int width, int height) {
     if (fused()) {
         // The worker's next picture wakes the window loop (set_wake).
         draw_fused(camera, width, height, 0);
+        return true;
+    }
+    if (animated()) {
+        // The frames that have arrived play in a loop; the worker's next frame wakes the window
+        // loop (set_wake), which looks at least every 0.1 s.
+        draw_animation(camera, width, height, -1);
         return true;
     }
     if (particle_mode()) {

@@ -1,10 +1,12 @@
 #pragma once
 // What the viewer draws each frame: the mesh's volume in the sort worker's latest order for the
-// view, or the particle-based picture the PBVR worker has accumulated for it, or the flow
+// view, or the particle-based picture the PBVR worker has accumulated for it, or the frame of
+// an animated method (texture-advection, spot-noise) the animation worker has drawn, or the flow
 // volume, or (a scene of several volumes) the fused picture the fused worker has drawn; the
 // transfer function rebuilt when the panel changed it; the frame redrawn only when something it
 // shows changed; and which GL renderer holds the last frame.
 
+#include <apps/viewer/animation_worker.h>
 #include <apps/viewer/flow_controls.h>
 #include <apps/viewer/fused_worker.h>
 #include <apps/viewer/pbvr_worker.h>
@@ -54,6 +56,7 @@ class VolumeView {
     void invalidate() {
         drawn_.reset();
         pbvr_shown_.reset();
+        animation_shown_id_ = 0;
     }
 
     // How the picture is made. The particle-based modes draw the mesh's volume and the opaque
@@ -69,6 +72,28 @@ class VolumeView {
         return mode_ == ViewMethod::kSplat && !vs_.pbvr.splat.vectors.empty();
     }
     static constexpr double kSplatCycleFps = 8.0;
+
+    // texture-advection, spot-noise (the scene's method only: mode() cannot become one from
+    // another; available() says which modes set_mode may take).
+    bool animated() const { return animated_method(mode_); }
+    bool available(ViewMethod mode) const {
+        return !animated_method(mode) || (animation_ && mode == vs_.method);
+    }
+    // The animated method's frame of `camera` at width x height: asks the worker for this view
+    // when it (or the scalar or transfer function) differs from the last one asked, which starts
+    // its frames over. With `frame` >= 0, waits for that frame (mod steps + 1) and shows it;
+    // with -1, shows the frame the clock is at among those arrived (kAnimationFps frames a
+    // second, in a loop; all steps + 1 once every one has arrived). Until the view's frame 0
+    // arrives the last picture stays. Returns the worker's frames (of the view asked for, or of
+    // an older one).
+    AnimationFrames draw_animation(const Camera& camera, int width, int height, int frame);
+    AnimationWorker& animation() { return *animation_; }
+    // The frame shown last (-1: none yet) and whether it is of the latest view asked for.
+    int animation_frame_shown() const { return animation_shown_frame_; }
+    bool animation_current() const {
+        return animation_shown_id_ != 0 && animation_shown_id_ == animation_requested_id_;
+    }
+    static constexpr double kAnimationFps = 10.0;
 
     // The particle-based picture of `camera` at width x height: asks the worker for this view
     // when it (or the method, scalar or transfer function) differs from the last one asked,
@@ -165,6 +190,17 @@ class VolumeView {
     int pbvr_tf_version_ = -1, pbvr_scalar_version_ = -1;
     std::optional<PbvrFrame> pbvr_shown_;
     std::int64_t splat_frame_ = 0;
+    // The animation worker (the scene's method is texture-advection or spot-noise), what it was
+    // last asked for, and the frame shown.
+    std::unique_ptr<AnimationWorker> animation_;
+    struct AnimationKey {
+        Camera camera;
+        int width, height, tf_version, scalar_version;
+        bool operator==(const AnimationKey& o) const;
+    };
+    std::optional<AnimationKey> animation_key_;
+    std::uint64_t animation_requested_id_ = 0, animation_shown_id_ = 0;
+    int animation_shown_frame_ = -1;
     std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
     // The fused worker (several volumes), what it was last asked for, and the copies it draws
     // from (per volume; versions from fused_version_, increasing).
