@@ -306,6 +306,20 @@ void check_polyhedral_block(const NetcdfFile& file, std::size_t b,
                  "NSIDED face block",
              file.where());
     }
+    // A null face block (fa_status 0) is skipped by VTK's reader, which then looks the
+    // polyhedra's faces up in it anyway (SEGV in GetPolyhedronFaceConnectivity; fuzz_exodus,
+    // eighth run).
+    if (const std::optional<int> status = file.var("fa_status")) {
+        file.for_each_value(*status, "fa_status", [&](std::size_t i, long long value) {
+            if (i == 0 && value == 0) {
+                fail(ErrorCode::kParse,
+                     "Exodus II " + owner +
+                         " is polyhedral (NFACED) but its faces' block, face block 1, is a null "
+                         "block (fa_status 0)",
+                     file.where());
+            }
+        });
+    }
     expect_counts_cover_list(file, owner, "ebepecnt" + n, "num_el_in_blk" + n, "facconn" + n,
                              "num_fac_per_el" + n, "element", "faces", 4);
     expect_refs_in_range(file, owner, "facconn" + n, "face", face_blocks[0],

@@ -345,7 +345,8 @@ struct PolyhedralSpec {
     std::vector<int> element_faces = {1, 2, 3, 4, 5, 6, 2, 7, 8, 9, 10, 11};
     std::vector<int> faces_per_element = {6, 6};
     std::string element_type = "nfaced";
-    int num_face_blocks = 1;  // a second one (a copy of the first) when 2
+    int num_face_blocks = 1;    // a second one (a copy of the first) when 2
+    int face_block_status = 1;  // fa_status of each face block (0: a null block)
 };
 
 void write_polyhedral_exodus(const fs::path& path, const PolyhedralSpec& spec, int format) {
@@ -424,8 +425,9 @@ void write_polyhedral_exodus(const fs::path& path, const PolyhedralSpec& spec, i
     const std::vector<int> ids = {10, 20};
     nc(nc_put_var_int(f, v_eb_status, &one), "eb_status");
     nc(nc_put_var_int(f, v_eb_prop, &one), "eb_prop1");
-    const std::vector<int> ones(static_cast<std::size_t>(spec.num_face_blocks), 1);
-    nc(nc_put_var_int(f, v_fa_status, ones.data()), "fa_status");
+    const std::vector<int> statuses(static_cast<std::size_t>(spec.num_face_blocks),
+                                    spec.face_block_status);
+    nc(nc_put_var_int(f, v_fa_status, statuses.data()), "fa_status");
     nc(nc_put_var_int(f, v_fa_prop, ids.data()), "fa_prop1");
     const double x[12] = {0, 1, 1, 0, 0, 1, 1, 0, 2, 2, 2, 2};
     const double y[12] = {0, 0, 1, 1, 0, 0, 1, 1, 0, 1, 0, 1};
@@ -508,6 +510,11 @@ TEST(BadInputExodus, PolyhedralBlocksAreChecked) {
          "face 1 has 2 nodes (at least 3 needed)"},
         {"two_face_blocks", [](PolyhedralSpec& s) { s.num_face_blocks = 2; },
          "element block 1 is polyhedral (NFACED) but the file has 2 face blocks"},
+        // fuzz_exodus, eighth run: VTK's reader skips a null face block, then segfaults looking
+        // the polyhedra's faces up in it (GetPolyhedronFaceConnectivity).
+        {"null_face_block", [](PolyhedralSpec& s) { s.face_block_status = 0; },
+         "element block 1 is polyhedral (NFACED) but its faces' block, face block 1, is a null "
+         "block (fa_status 0)"},
         {"faces_but_not_nfaced", [](PolyhedralSpec& s) { s.element_type = "HEX8"; },
          "element block 1 has faces ('facconn1') but no node connectivity ('connect1') and is "
          "not NFACED"},
