@@ -52,6 +52,7 @@ struct ExodusSpec {
     std::optional<int> word_size = 8;      // 'floating_point_word_size' (none: not written)
     std::size_t num_dim = 3;
     int name_length = 32;  // the global maximum_name_length
+    int block_status = 1;  // eb_status of the block (0: a null block)
 };
 
 // Writes a small Exodus II file (one block of TETRA4, a nodal variable 'temp' = 10 * node id,
@@ -136,7 +137,7 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     const double t0 = 0.0;
     const std::size_t zero = 0, one_step = 1;
     nc(nc_put_var1_double(f, v_time, &zero, &t0), "time");
-    nc(nc_put_var_int(f, v_eb_status, &one), "eb_status");
+    nc(nc_put_var_int(f, v_eb_status, &spec.block_status), "eb_status");
     nc(nc_put_var_int(f, v_eb_prop, &ten), "eb_prop1");
     nc(nc_put_var_int(f, v_ss_status, &one), "ss_status");
     nc(nc_put_var_int(f, v_ss_prop, &twenty), "ss_prop1");
@@ -263,6 +264,11 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
          },
          "Exodus II num_el_blk = 1128547841 is not plausible for a file of"},
         // fuzz_exodus, third run: connect2 without its elem_type attribute, the same crash.
+        // fuzz_exodus, ninth run: a null block with elements, which a side set names: VTK's
+        // reader skips the block and segfaults in InsertSetSides.
+        {"null_block_with_elements", [](ExodusSpec& s) { s.block_status = 0; },
+         "element block 1 is a null element block (eb_status 0) but has 2 entries "
+         "('num_el_in_blk1')"},
         {"block_without_element_type", [](ExodusSpec& s) { s.element_type = false; },
          "element block 1 (connect1) has no element type (its text attribute 'elem_type')"},
         // fuzz_exodus, finding 38: without these the Exodus library's ex_open fails and leaves
@@ -513,8 +519,7 @@ TEST(BadInputExodus, PolyhedralBlocksAreChecked) {
         // fuzz_exodus, eighth run: VTK's reader skips a null face block, then segfaults looking
         // the polyhedra's faces up in it (GetPolyhedronFaceConnectivity).
         {"null_face_block", [](PolyhedralSpec& s) { s.face_block_status = 0; },
-         "element block 1 is polyhedral (NFACED) but its faces' block, face block 1, is a null "
-         "block (fa_status 0)"},
+         "face block 1 is a null face block (fa_status 0) but has 11 entries ('num_fa_in_blk1')"},
         {"faces_but_not_nfaced", [](PolyhedralSpec& s) { s.element_type = "HEX8"; },
          "element block 1 has faces ('facconn1') but no node connectivity ('connect1') and is "
          "not NFACED"},
