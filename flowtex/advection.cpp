@@ -1,5 +1,7 @@
 #include <core/parallel.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <flowtex/advection.h>
 
@@ -23,6 +25,10 @@ Result<TextureAdvection> TextureAdvection::create(const Sheet& sheet, const Flow
                           "re-injection period must be 0 or an even number of frames");
     }
     TextureAdvection advection(sheet, flow, options);
+    if (options.sample_velocity_on_sheet && flow.steady() && !sheet.grid_point.empty()) {
+        advection.sampled_ = std::make_unique<SheetSampledFlow>(sheet, flow);
+        advection.flow_ = advection.sampled_.get();
+    }
     const int num_layers = options.reinject_frames > 0 ? 2 : 1;
     for (int k = 0; k < num_layers; ++k) {
         Layer layer;
@@ -89,7 +95,12 @@ void TextureAdvection::advance_layer(Layer& layer, double t0) {
     if (flow.steady() && options_.steady_streamlines) {
         // Q moves one step further back along the streamline through P (which in a steady flow
         // is the same curve every frame).
+        if (const SheetSampledFlow* sampled = sampled_.get()) {
+            advance_on_sheet_grid(layer, *sampled, t0);
+            return;
+        }
         parallel_for(0, n, kGrain, [&](std::size_t i) {
+            if (!layer.alive[i]) return;
             // No end-point check: a Q that lands outside stops there at the next step's first
             // lookup, as one stopped by this step would (a fifth of the lookups saved).
             const auto back =
@@ -97,9 +108,12 @@ void TextureAdvection::advance_layer(Layer& layer, double t0) {
             if (back) {
                 layer.points[i] = *back;
                 layer.texcoords[i] = texcoord(layer, *back);
+            } else {
+                // The streamline ends at the domain's boundary (an inflow): Q stays, the
+                // texture there stretches until the layer is re-injected; in a steady flow
+                // the same step fails again, so it is not tried again (alive = 0).
+                layer.alive[i] = 0;
             }
-            // Otherwise the streamline ends at the domain's boundary (an inflow): Q stays, the
-            // texture there stretches until the layer is re-injected.
         });
         return;
     }
@@ -129,6 +143,42 @@ void TextureAdvection::advance_layer(Layer& layer, double t0) {
                  [&](std::size_t i) { layer.texcoords[i] = texcoord(layer, layer.points[i]); });
 }
 
+void TextureAdvection::advance_on_sheet_grid(Layer& layer, const SheetSampledFlow& sampled,
+                                             double t0) {
+    const Sheet& sheet = *sheet_;
+    const double dt = options_.dt;
+    const double inv_spacing = 1.0 / sheet.spacing;
+    constexpr std::size_t kChunk = 256;
+    const std::size_t n = sheet.points.size();
+    parallel_for(0, (n + kChunk - 1) / kChunk, 4, [&](std::size_t chunk) {
+        const std::size_t first = chunk * kChunk, count = std::min(kChunk, n - first);
+        std::array<glm::dvec2, kChunk> grid, back;
+        for (std::size_t k = 0; k < count; ++k) {
+            grid[k] = sheet.plane_coordinates(layer.points[first + k]) * inv_spacing;
+        }
+        sampled.grid_steps(std::span(grid.data(), count), -dt, std::span(back.data(), count));
+        for (std::size_t k = 0; k < count; ++k) {
+            const std::size_t i = first + k;
+            if (!std::isnan(back[k].x)) {
+                const glm::dvec2 st = back[k] * sheet.spacing;
+                layer.points[i] = sheet.origin + st.x * sheet.axis_u + st.y * sheet.axis_v;
+                layer.texcoords[i] = st / options_.texture_period + layer.offset;
+                continue;
+            }
+            // A stage off the sheet's triangles: the flow itself, as advance_layer does.
+            if (!layer.alive[i]) continue;
+            const auto step =
+                rk4_step(*flow_, layer.points[i], t0, -dt, sheet.normal, layer.hints[i], false);
+            if (step) {
+                layer.points[i] = *step;
+                layer.texcoords[i] = texcoord(layer, *step);
+            } else {
+                layer.alive[i] = 0;  // the streamline ends here, and will next frame too
+            }
+        }
+    });
+}
+
 std::span<const Vec3> TextureAdvection::positions(int k) const {
     if (options_.method == AdvectionMethod::kForward) return layers_[k].points;
     return sheet_->points;
@@ -144,7 +194,11 @@ std::vector<TexturedMeshView> TextureAdvection::views() const {
         view.triangles = sheet_->triangles;
         // Backward layers never lose points: no mask, so the rasteriser sees that every layer
         // shares the sheet's positions and triangles and traverses them once.
-        if (options_.method == AdvectionMethod::kForward) view.alive = layer.alive;
+        if (options_.method == AdvectionMethod::kForward) {
+            view.alive = layer.alive;
+        } else if (!sheet_->grid_point.empty()) {
+            view.grid = sheet_;
+        }
         view.weight = weight(layer);
         out.push_back(view);
     }

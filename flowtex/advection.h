@@ -11,6 +11,10 @@
 //   equation dQ/dt + (v . grad) Q = 0 semi-Lagrangian, frame to frame: Q(P, t + dt) =
 //   Q(X, t), X the RK4 step back from P over [t, t + dt], Q(X, t) interpolated linearly on the
 //   sheet's triangles; where X is off the sheet the flow brings in fresh texture: Q = X.
+//   On a grid sheet a steady flow's velocity is sampled once at the sheet's points and
+//   interpolated on its triangles (AdvectionOptions::sample_velocity_on_sheet), and a point
+//   whose streamline has ended (at an inflow boundary) is not traced again until its layer is
+//   reset.
 // - kForward: the points move forward along particle paths and keep their texture
 //   coordinates; a point that leaves the flow's domain dies and its triangles are not drawn.
 //
@@ -28,6 +32,8 @@
 #include <cstdint>
 #include <flowtex/flow.h>
 #include <flowtex/sheet.h>
+#include <flowtex/sheet_sampled_flow.h>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -44,6 +50,10 @@ struct AdvectionOptions {
     // kBackward on a steady flow: per-point streamlines (true, the default) or the transport
     // equation as for unsteady flow (false; for comparisons). Ignored otherwise.
     bool steady_streamlines = true;
+    // Steady flow on a grid sheet: the velocity is looked up once at the sheet's points and
+    // interpolated linearly on its triangles (SheetSampledFlow; Max and Becker's velocities at
+    // the polygons' vertices) instead of being located in the flow's mesh at every RK4 stage.
+    bool sample_velocity_on_sheet = true;
 };
 
 // What a rasteriser draws: a triangle mesh with per-point texture coordinates (in periods),
@@ -54,6 +64,10 @@ struct TexturedMeshView {
     std::span<const std::array<std::uint32_t, 3>> triangles;
     std::span<const std::uint8_t> alive;  // per point, 0: its triangles are skipped; empty: all
     float weight = 1.0f;
+    // When set, positions and triangles are this grid sheet's points and triangles (nothing
+    // skipped): a rasteriser may find each pixel's triangle on the grid instead of visiting
+    // every triangle.
+    const Sheet* grid = nullptr;
 };
 
 class TextureAdvection {
@@ -65,7 +79,8 @@ class TextureAdvection {
                                            const AdvectionOptions& options);
 
     // To the next frame (time + dt). Cost: per point and layer one RK4 step (four velocity
-    // lookups), parallel over points.
+    // lookups: on a sampled sheet velocity three grid points each, otherwise the flow's own,
+    // a point location in its mesh), parallel over points.
     void advance();
 
     int frame() const { return frame_; }
@@ -86,6 +101,8 @@ class TextureAdvection {
         glm::dvec2 offset{0.0};    // added to its texture coordinates
         std::vector<Vec3> points;  // kBackward: Q per point; kForward: moved positions
         std::vector<glm::dvec2> texcoords;
+        // kForward: 0 once the point has left the flow; kBackward on a steady flow: 0 once
+        // its streamline has ended (Q stays until the layer is reset).
         std::vector<std::uint8_t> alive;
         std::vector<CellId> hints;
     };
@@ -94,11 +111,14 @@ class TextureAdvection {
         : sheet_(&sheet), flow_(&flow), options_(options) {}
     void reset(Layer& layer) const;
     void advance_layer(Layer& layer, double t0);
+    // advance_layer's steady backward step on the velocity sampled at a grid sheet's points.
+    void advance_on_sheet_grid(Layer& layer, const SheetSampledFlow& sampled, double t0);
     float weight(const Layer& layer) const;
     glm::dvec2 texcoord(const Layer& layer, const Vec3& q) const;
 
     const Sheet* sheet_;
-    const Flow* flow_;
+    const Flow* flow_;  // the flow given, or *sampled_
+    std::unique_ptr<const SheetSampledFlow> sampled_;
     AdvectionOptions options_;
     int frame_ = 0;
     std::vector<Layer> layers_;

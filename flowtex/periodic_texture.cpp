@@ -72,48 +72,11 @@ PeriodicTexture PeriodicTexture::filtered_noise(int size, std::uint64_t seed, in
     return tex;
 }
 
-namespace {
-
-// floor(x) as an integer, without a libm call (x within +-9e18).
-inline std::int64_t floor_int(double x) {
-    const auto i = static_cast<std::int64_t>(x);
-    return i - (x < static_cast<double>(i) ? 1 : 0);
-}
-
-}  // namespace
-
-float PeriodicTexture::sample_level(double u, double v, int level) const {
-    const int n = size_ >> level;
-    const float* t = levels_[static_cast<std::size_t>(level)].data();
-    // Texel centres at (i + 0.5) / n; wrapping is the mask on the integer part.
-    const double x = u * n - 0.5, y = v * n - 0.5;
-    const std::int64_t x0 = floor_int(x), y0 = floor_int(y);
-    const float fx = static_cast<float>(x - static_cast<double>(x0));
-    const float fy = static_cast<float>(y - static_cast<double>(y0));
-    const std::int64_t mask = n - 1;
-    const std::size_t i0 = static_cast<std::size_t>(x0 & mask);
-    const std::size_t j0 = static_cast<std::size_t>(y0 & mask);
-    const std::size_t i1 = static_cast<std::size_t>((x0 + 1) & mask);
-    const std::size_t r0 = j0 * n, r1 = static_cast<std::size_t>((y0 + 1) & mask) * n;
-    const float top = t[r0 + i0] + fx * (t[r0 + i1] - t[r0 + i0]);
-    const float bottom = t[r1 + i0] + fx * (t[r1 + i1] - t[r1 + i0]);
-    return top + fy * (bottom - top);
-}
+namespace {}  // namespace
 
 float PeriodicTexture::sample(double u, double v, double footprint) const {
     if (!(footprint > 1.0)) return sample_level(u, v, 0);
     return sample_lod(u, v, std::log2(footprint));
-}
-
-float PeriodicTexture::sample_lod(double u, double v, double lod) const {
-    if (!(lod > 0.0)) return sample_level(u, v, 0);
-    const int last = levels() - 1;
-    if (lod >= last) return levels_.back()[0];
-    const int l0 = static_cast<int>(lod);
-    const float f = static_cast<float>(lod - l0);
-    const float a = sample_level(u, v, l0);
-    const float b = sample_level(u, v, l0 + 1);
-    return a + f * (b - a);
 }
 
 }  // namespace tr

@@ -24,8 +24,12 @@ struct SheetRasterOptions {
 // cross-fade (when all covering weights are 0: their plain mean). Texture lookups use the
 // triangle's screen-space derivatives of the texture coordinates (constant per triangle) for
 // the mip level. Points behind a perspective eye drop their triangles. Bit-identical for any
-// thread count (bands of rows, triangles in order within a band).
-// Cost: O(points + triangles + covered pixels x layers x 8 texel reads).
+// thread count (bands of rows, triangles in order within a band). Layers on a grid sheet
+// (TexturedMeshView::grid) find each pixel's triangle on the grid instead: the same texture
+// coordinates, the mip level from each pixel's own footprint (the same as the triangle's for an
+// orthographic camera).
+// Cost: O(points + triangles + covered pixels x layers x 8 texel reads); on a grid sheet
+// O(pixels x layers x 8 texel reads) whatever the number of triangles.
 void rasterize_sheet(const CameraFrame& frame, std::span<const TexturedMeshView> layers,
                      const PeriodicTexture& texture, const SheetRasterOptions& options,
                      Image& image);
