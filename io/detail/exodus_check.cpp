@@ -254,6 +254,34 @@ void expect_element_type(const NetcdfFile& file, int conn, const std::string& ow
     }
 }
 
+// VTK's reader takes a cell's node count from the first three letters of the element type
+// (TET 4, HEX 8, ...; more nodes pick a quadratic cell or are read as the first ones) and reads
+// that many from each element's row of num_nod_per_el: a shorter row reads past the block's list
+// (heap garbage as node ids: a SEGV in AssembleOutputPoints, fuzz_exodus, eleventh run, for a
+// TETRA4 block of 3 nodes an element).
+void expect_nodes_for_type(const NetcdfFile& file, int conn, const std::string& owner,
+                           const std::string& conn_name, std::size_t per_element,
+                           const std::string& per_element_name) {
+    struct Minimum {
+        const char* prefix;
+        std::size_t nodes;
+    };
+    static constexpr Minimum kMinimum[] = {
+        {"CIR", 1}, {"SPH", 1}, {"BAR", 2}, {"TRU", 2}, {"BEA", 2}, {"EDG", 2}, {"STR", 2},
+        {"TRI", 3}, {"SHE", 3}, {"QUA", 4}, {"TET", 4}, {"PYR", 5}, {"WED", 6}, {"HEX", 8}};
+    std::string type = file.upper_text_attribute(conn, "elem_type");
+    type.resize(std::min(type.size(), type.find('\0')));
+    for (const Minimum& m : kMinimum) {
+        if (type.rfind(m.prefix, 0) == 0 && per_element < m.nodes) {
+            fail(ErrorCode::kParse,
+                 "Exodus II " + owner + " (" + conn_name + "): element type " + type +
+                     " needs at least " + std::to_string(m.nodes) + " nodes an element, not " +
+                     std::to_string(per_element) + " ('" + per_element_name + "')",
+                 file.where());
+        }
+    }
+}
+
 // Face blocks (`fbconn<k>`): the faces polyhedral elements are made of. An NSIDED block lists
 // each face's node count in `fbepecnt<k>`; any other has `num_nod_per_fa<k>` nodes a face. Every
 // node id within the file's node count. Returns the number of faces of each block.
@@ -441,6 +469,8 @@ std::size_t check_block(const NetcdfFile& file, std::size_t b, std::size_t num_n
                                  "num_nod_per_el" + n, "element", "nodes", 1);
     } else {
         expect_shape(file, *conn, conn_name, {"num_el_in_blk" + n, "num_nod_per_el" + n});
+        expect_nodes_for_type(file, *conn, block, conn_name, file.length("num_nod_per_el" + n),
+                              "num_nod_per_el" + n);
     }
     const std::size_t per_element = std::max<std::size_t>(1, file.length("num_nod_per_el" + n));
     file.for_each_value(*conn, conn_name, [&](std::size_t i, long long v) {

@@ -48,6 +48,7 @@ struct ExodusSpec {
     std::size_t extra_count = 1;  // its length
     std::string missing_dim;      // a dimension written under another name
     bool element_type = true;     // connect1's elem_type attribute
+    std::string type_name = "TETRA4";      // its value
     std::optional<float> version = 8.03f;  // the global 'version' (none: not written)
     std::optional<int> word_size = 8;      // 'floating_point_word_size' (none: not written)
     std::size_t num_dim = 3;
@@ -120,7 +121,11 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     const int v_coor_names = var("coor_names", NC_CHAR, {d_num_dim, d_len_name});
     const int v_eb_names = var("eb_names", NC_CHAR, {d_blocks, d_len_name});
     const int v_connect = var("connect1", NC_INT, {d_in_blk, d_per_el});
-    if (spec.element_type) nc(nc_put_att_text(f, v_connect, "elem_type", 6, "TETRA4"), "att");
+    if (spec.element_type) {
+        nc(nc_put_att_text(f, v_connect, "elem_type", spec.type_name.size(),
+                           spec.type_name.c_str()),
+           "att");
+    }
     const int v_elem_ss = var("elem_ss1", NC_INT, {d_side_ss});
     const int v_side_ss = var("side_ss1", NC_INT, {d_side_ss});
     const int v_node_ns = var("node_ns1", NC_INT, {d_node_ns});
@@ -269,6 +274,11 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
         {"null_block_with_elements", [](ExodusSpec& s) { s.block_status = 0; },
          "element block 1 is a null element block (eb_status 0) but has 2 entries "
          "('num_el_in_blk1')"},
+        // fuzz_exodus, eleventh run: VTK reads as many nodes an element as the type has (8 for
+        // a hexahedron) from rows of num_nod_per_el (4 here), past the end of the list.
+        {"fewer_nodes_than_the_type", [](ExodusSpec& s) { s.type_name = "HEX8"; },
+         "element block 1 (connect1): element type HEX8 needs at least 8 nodes an element, not 4 "
+         "('num_nod_per_el1')"},
         {"block_without_element_type", [](ExodusSpec& s) { s.element_type = false; },
          "element block 1 (connect1) has no element type (its text attribute 'elem_type')"},
         // fuzz_exodus, finding 38: without these the Exodus library's ex_open fails and leaves
