@@ -45,6 +45,15 @@ def scene_seeds():
     seeds["splat.json"] = dict(base, method={"name": "splat", "kernel": "gaussian",
                                              "spacing": 0.5, "compositing": "per-splat",
                                              "vectors": "V", "cycle": 4, "frame": 1})
+    seeds["texture_advection.json"] = dict(base, method={
+        "name": "texture-advection", "vectors": "V", "slices": [[0, 0, 1, 0, 0, 1],
+                                                              [0.5, 0, 0, 1, 0, 0]],
+        "steps": 4, "frame": 2, "dt": 0.1, "unsteady": False, "start_time": 0,
+        "advection": "backward", "reinject": 40, "resolution": 64, "sheet_opacity": 0.6})
+    seeds["spot_noise.json"] = dict(base, method={
+        "name": "spot-noise", "vectors": "V", "iso": 4.5, "scalar": "temp", "band": 0.05,
+        "count": 500, "dt": 0.02, "steps": 3, "frame": 3, "lifetime": 60,
+        "spot_opacity": 1.5, "seed": 7})
     return {name: json.dumps(s, indent=1).encode() for name, s in seeds.items()}
 
 
