@@ -52,8 +52,9 @@ struct ExodusSpec {
     std::optional<float> version = 8.03f;  // the global 'version' (none: not written)
     std::optional<int> word_size = 8;      // 'floating_point_word_size' (none: not written)
     std::size_t num_dim = 3;
-    int name_length = 32;  // the global maximum_name_length
-    int block_status = 1;  // eb_status of the block (0: a null block)
+    int name_length = 32;            // the global maximum_name_length
+    int block_status = 1;            // eb_status of the block (0: a null block)
+    bool ids_over_elements = false;  // eb_prop1 (the block ids) over num_el_in_blk1
 };
 
 // Writes a small Exodus II file (one block of TETRA4, a nodal variable 'temp' = 10 * node id,
@@ -107,7 +108,7 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     };
     const int v_time = var("time_whole", NC_DOUBLE, {d_time});
     const int v_eb_status = var("eb_status", NC_INT, {d_blocks});
-    const int v_eb_prop = var("eb_prop1", NC_INT, {d_blocks});
+    const int v_eb_prop = var("eb_prop1", NC_INT, {spec.ids_over_elements ? d_in_blk : d_blocks});
     nc(nc_put_att_text(f, v_eb_prop, "name", 2, "ID"), "att");
     const int v_ss_status = var("ss_status", NC_INT, {d_side_sets});
     const int v_ss_prop = var("ss_prop1", NC_INT, {d_side_sets});
@@ -143,7 +144,8 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     const std::size_t zero = 0, one_step = 1;
     nc(nc_put_var1_double(f, v_time, &zero, &t0), "time");
     nc(nc_put_var_int(f, v_eb_status, &spec.block_status), "eb_status");
-    nc(nc_put_var_int(f, v_eb_prop, &ten), "eb_prop1");
+    const int ids[2] = {ten, ten + 1};
+    nc(nc_put_var_int(f, v_eb_prop, ids), "eb_prop1");
     nc(nc_put_var_int(f, v_ss_status, &one), "ss_status");
     nc(nc_put_var_int(f, v_ss_prop, &twenty), "ss_prop1");
     nc(nc_put_var_int(f, v_ns_status, &one), "ns_status");
@@ -276,6 +278,10 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
          "('num_el_in_blk1')"},
         // fuzz_exodus, eleventh run: VTK reads as many nodes an element as the type has (8 for
         // a hexahedron) from rows of num_nod_per_el (4 here), past the end of the list.
+        // fuzz_exodus, twelfth run: one id for two blocks (eb_prop1 over another dimension);
+        // VTK's reader skipped the block without one, then named it (GetSortedObjectInfo).
+        {"ids_over_another_dimension", [](ExodusSpec& s) { s.ids_over_elements = true; },
+         "eb_prop1"},
         {"fewer_nodes_than_the_type", [](ExodusSpec& s) { s.type_name = "HEX8"; },
          "element block 1 (connect1): element type HEX8 needs at least 8 nodes an element, not 4 "
          "('num_nod_per_el1')"},
