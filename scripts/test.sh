@@ -2,25 +2,44 @@
 # Installs what is missing, builds tetrender (Release, warnings are errors) and runs every test.
 #   scripts/test.sh              Release build in build/
 #   scripts/test.sh --sanitize   ASan + UBSan build in build-sanitize/
+#   scripts/test.sh --fuzz-smoke the libFuzzer targets (clang, ASan + UBSan) in build-fuzz/,
+#                                each run for 5 s on its seeds (docs/fuzzing.md)
 # Extra arguments after -- go to ctest (e.g. -- -L unit).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/packages.sh
 
 sanitize=0
+fuzz=0
 ctest_args=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --sanitize) sanitize=1 ;;
+    --fuzz-smoke) fuzz=1 ;;
     --) shift; ctest_args=("$@"); break ;;
-    -h|--help) sed -n '2,6p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,7p' "$0"; exit 0 ;;
     *) echo "test.sh: unknown argument '$1' (try --help)" >&2; exit 2 ;;
   esac
   shift
 done
 
+[ $fuzz -eq 1 ] && TETRENDER_PACKAGES+=(clang libclang-rt-14-dev libfuzzer-14-dev)
 ensure_packages
 jobs=$(nproc)
+if [ $fuzz -eq 1 ]; then
+  build=build-fuzz
+  # Only the libraries the targets need, -O1 -g1, without CGAL (no target reaches it): the
+  # smoke run checks that every target builds and survives its seeds, not their coverage.
+  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
+        -DCMAKE_CXX_COMPILER=clang++ -DTETRENDER_FUZZ=ON -DTETRENDER_WITH_CGAL=OFF \
+        -DTETRENDER_BUILD_TESTS=OFF -DTETRENDER_BUILD_BENCH=OFF -DTETRENDER_BUILD_APPS=OFF \
+        -DTETRENDER_BUILD_VIEWER=OFF -DTETRENDER_PYTHON=OFF \
+        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+        -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
+  cmake --build "$build" -j "$jobs"
+  ctest --test-dir "$build" --output-on-failure -L fuzz "${ctest_args[@]}"
+  exit 0
+fi
 if [ $sanitize -eq 1 ]; then
   build=build-sanitize
   # -O1 -g1 (line tables, enough for the sanitizers' stack traces): compiles in about half the
