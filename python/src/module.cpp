@@ -493,12 +493,23 @@ PYBIND11_MODULE(_core, m) {
             "render",
             [](SceneHandle& s, const std::string& method, const std::string& sort,
                const std::string& integrator, bool as_float, bool legend, bool bounding_box,
-               bool axes) {
+               bool axes, const std::string& method_json) {
                 tr::RenderOptions options;
                 options.sort = unwrap(tr::sort_method_named(sort));
                 unwrap(tr::set_integrator_option(options, integrator));
                 tr::Scene scene = s.scene;
-                if (!method.empty()) {
+                if (!method_json.empty()) {
+                    // A whole method object: checked by the scene parser inside a scene that
+                    // has nothing else of its own.
+                    const std::string text =
+                        R"({"mesh": "-", "scalar": "-", "transfer_function": {"color": )"
+                        R"([[0, 0, 0, 0]], "opacity": [[0, 0]], "unit_distance": 1}, )"
+                        R"("camera": {"position": [0, 0, 1], "focal_point": [0, 0, 0], )"
+                        R"("view_up": [0, 1, 0]}, "image": {"width": 1, "height": 1}, )"
+                        R"("method": )" +
+                        method_json + "}";
+                    scene.method = unwrap(tr::parse_scene(text, ".", "<method>")).method;
+                } else if (!method.empty()) {
                     tr::MethodSpec spec = scene.method.value_or(tr::MethodSpec{});
                     spec.name = method;
                     scene.method = spec;
@@ -530,7 +541,8 @@ PYBIND11_MODULE(_core, m) {
                                       stats_dict(rendered.stats), rendered.notes, flow);
             },
             py::arg("method"), py::arg("sort"), py::arg("integrator"), py::arg("as_float"),
-            py::arg("legend") = false, py::arg("bounding_box") = false, py::arg("axes") = false)
+            py::arg("legend") = false, py::arg("bounding_box") = false, py::arg("axes") = false,
+            py::arg("method_json") = "")
         .def(
             "sort",
             [](py::object self, std::size_t index, const std::string& method) {

@@ -219,3 +219,23 @@ def test_annotations_are_the_clis(ring, cli, output_dir):
     assert 0.02 < changed < 0.3, changed
     with pytest.raises(tetrender.Error, match=r"legend: the picture \(16x12\) is too small for it"):
         tetrender.render(scene_dict(ring_mesh(ring), 16, 12), legend=True)
+
+
+def test_a_method_object_overrides_the_scenes_method_with_its_keys(ring, output_dir):
+    # render(method={...}) is the scene file's `method` object: the same picture as a scene
+    # that carries it, and its keys checked as the scene file's.
+    mesh = ring_mesh(ring)
+    method = {"name": "pbvr-image", "repetitions": 3, "seed": 5, "depth": "entry"}
+    with_method = scene_dict(mesh)
+    with_method["method"] = method
+    expected = tetrender.render(with_method, dtype=np.float32)
+    picture = tetrender.render(scene_dict(mesh), method=method, dtype=np.float32)
+    # Measured: largest difference 0 (the same method, seed and repetitions).
+    assert np.abs(picture - expected).max() == 0.0
+    # Another seed is another picture: the keys were used, not just the name.
+    other = tetrender.render(scene_dict(mesh), method=dict(method, seed=6), dtype=np.float32)
+    assert np.abs(other - expected).max() > 0.0
+    with pytest.raises(tetrender.Error, match=r"\$\.method\.bogus: unknown key"):
+        tetrender.render(scene_dict(mesh), method={"name": "pbvr-image", "bogus": 1})
+    with pytest.raises(tetrender.Error, match="repetitions"):
+        tetrender.render(scene_dict(mesh), method={"name": "pbvr-image", "repetitions": 0})

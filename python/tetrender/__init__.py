@@ -548,7 +548,7 @@ def _scene(scene: Any) -> Scene:
 
 def render(
     scene: Any,
-    method: str | None = None,
+    method: str | Mapping[str, Any] | None = None,
     sort: str = "auto",
     integrator: str = "preintegrated",
     dtype: Any = np.uint8,
@@ -559,7 +559,10 @@ def render(
 ) -> Any:
     """Renders a scene (a Scene, or what Scene() takes) to an ``(H, W, 3)`` array, row 0 at the top.
 
-    ``method`` overrides the scene's (projected-tetrahedra, pbvr-image, pbvr-object, splat...);
+    ``method`` overrides the scene's: a name (projected-tetrahedra, pbvr-image, pbvr-object,
+    splat, texture-advection, spot-noise...) keeps the scene's method keys, a mapping is a whole
+    scene-file ``method`` object (``{"name": "texture-advection", "vectors": "V", "steps":
+    20}``), checked as the scene file's;
     ``sort`` (auto, mpvo, mpvonc, exact, centroid) and ``integrator`` (preintegrated, exact,
     exp-texture, reference) are the CLI's ``--sort`` and ``--integrator``. ``dtype`` uint8 gives
     the PNG's bytes (linear, clamped, rounded); float32 the linear colours (the PFM's values).
@@ -572,8 +575,14 @@ def render(
     as_float = np.dtype(dtype) == np.float32
     if not as_float and np.dtype(dtype) != np.uint8:
         raise Error(f"error: dtype must be uint8 or float32, not {np.dtype(dtype).name}")
-    image, stats, notes, _ = _scene(scene)._handle.render(method or "", sort, integrator, as_float,
-                                                          legend, bounding_box, axes)
+    name, method_json = "", ""
+    if isinstance(method, Mapping):
+        method_json = json.dumps(dict(method))
+    elif method is not None:
+        name = str(method)
+    image, stats, notes, _ = _scene(scene)._handle.render(name, sort, integrator, as_float,
+                                                          legend, bounding_box, axes,
+                                                          method_json=method_json)
     return (image, stats, notes) if return_stats else image
 
 
