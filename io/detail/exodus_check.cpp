@@ -282,6 +282,23 @@ void expect_nodes_for_type(const NetcdfFile& file, int conn, const std::string& 
     }
 }
 
+// The sides a side set may name on an element of `type` (0: none), by the first three letters
+// as VTK's reader types cells: a circle or sphere is a vertex, whose side VTK's InsertSetSides
+// looks up in no table (SEGV; fuzz_exodus, thirteenth run). Types not listed: 6, the bound
+// for any element.
+int sides_of_type(const std::string& type) {
+    struct Sides {
+        const char* prefix;
+        int sides;
+    };
+    static constexpr Sides kSides[] = {{"CIR", 0}, {"SPH", 0}, {"SUP", 0}, {"TET", 4},
+                                       {"WED", 5}, {"PYR", 5}, {"HEX", 6}};
+    for (const Sides& s : kSides) {
+        if (type.rfind(s.prefix, 0) == 0) return s.sides;
+    }
+    return 6;
+}
+
 // Face blocks (`fbconn<k>`): the faces polyhedral elements are made of. An NSIDED block lists
 // each face's node count in `fbepecnt<k>`; any other has `num_nod_per_fa<k>` nodes a face. Every
 // node id within the file's node count. Returns the number of faces of each block.
@@ -614,9 +631,29 @@ void check_exodus_contents(const fs::path& path) {
         }
     }
 
-    // Side sets name elements (1..num_elem) and a side of each (a 3-D element has at most 6);
-    // node sets name nodes.
+    // Side sets name elements (1..num_elem) and a side of each (a 3-D element has at most 6,
+    // its type's own count: sides_of_type); node sets name nodes.
     const std::size_t num_side_sets = file.length("num_side_sets");
+    struct BlockSides {
+        std::size_t end = 0;  // one past its last element (1-based numbering: its last)
+        int sides = 6;
+        std::string type;
+    };
+    std::vector<BlockSides> block_sides;
+    if (num_side_sets > 0) {
+        std::size_t end = 0;
+        for (std::size_t b = 1; b <= num_blocks; ++b) {
+            const std::string n = std::to_string(b);
+            end += file.length("num_el_in_blk" + n);
+            BlockSides block{end, 6, ""};
+            if (const std::optional<int> conn = file.var("connect" + n)) {
+                block.type = file.upper_text_attribute(*conn, "elem_type");
+                block.type.resize(std::min(block.type.size(), block.type.find('\0')));
+                block.sides = sides_of_type(block.type);
+            }
+            block_sides.push_back(block);
+        }
+    }
     for (std::size_t s = 1; s <= num_side_sets; ++s) {
         const std::string n = std::to_string(s);
         for (const char* var : {"elem_ss", "side_ss"}) {
@@ -627,6 +664,27 @@ void check_exodus_contents(const fs::path& path) {
         expect_ids_in_range(file, "elem_ss" + n, "side set " + n, num_elem,
                             "the file's element count");
         expect_ids_in_range(file, "side_ss" + n, "side set " + n, 6, "an element's sides");
+        const std::optional<int> elems = file.var("elem_ss" + n);
+        const std::optional<int> sides = file.var("side_ss" + n);
+        if (!elems || !sides) continue;
+        std::vector<long long> elem_ids;
+        file.for_each_value(*elems, "elem_ss" + n,
+                            [&](std::size_t, long long v) { elem_ids.push_back(v); });
+        file.for_each_value(*sides, "side_ss" + n, [&](std::size_t i, long long side) {
+            if (i >= elem_ids.size()) return;
+            const auto e = static_cast<std::size_t>(elem_ids[i]);  // in 1..num_elem (above)
+            const auto block = std::upper_bound(
+                block_sides.begin(), block_sides.end(), e - 1,
+                [](std::size_t index, const BlockSides& b) { return index < b.end; });
+            if (block == block_sides.end() || side <= block->sides) return;
+            fail(ErrorCode::kParse,
+                 "Exodus II side set " + n + " (side_ss" + n + "): entry " + std::to_string(i) +
+                     " names side " + std::to_string(side) + " of element " + std::to_string(e) +
+                     ", a " + block->type + " of element block " +
+                     std::to_string(block - block_sides.begin() + 1) + ", which has " +
+                     std::to_string(block->sides) + " sides",
+                 file.where());
+        });
     }
     const std::size_t num_node_sets = file.length("num_node_sets");
     for (std::size_t s = 1; s <= num_node_sets; ++s) {

@@ -282,6 +282,13 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
         // VTK's reader skipped the block without one, then named it (GetSortedObjectInfo).
         {"ids_over_another_dimension", [](ExodusSpec& s) { s.ids_over_elements = true; },
          "eb_prop1"},
+        // fuzz_exodus, thirteenth run: a side set naming a side of a circle (VTK: a vertex,
+        // whose sides InsertSetSides looks up in no table) or a tet's fifth side.
+        {"side_of_a_circle", [](ExodusSpec& s) { s.type_name = "CIRCLE"; },
+         "side set 1 (side_ss1): entry 0 names side 1 of element 1, a CIRCLE of element block "
+         "1, which has 0 sides"},
+        {"fifth_side_of_a_tet", [](ExodusSpec& s) { s.side_sides[1] = 5; },
+         "entry 1 names side 5 of element 2, a TETRA4 of element block 1, which has 4 sides"},
         {"fewer_nodes_than_the_type", [](ExodusSpec& s) { s.type_name = "HEX8"; },
          "element block 1 (connect1): element type HEX8 needs at least 8 nodes an element, not 4 "
          "('num_nod_per_el1')"},
