@@ -587,6 +587,20 @@ void check_exodus_contents(const fs::path& path) {
     }
     if (const std::optional<int> v = file.var("coord")) {
         expect_shape(file, *v, "coord", {"num_dim", "num_nodes"});
+    } else if (num_nodes > 0) {
+        // Without them VTK's reader went on and dereferenced a null array (GetCacheOrRead;
+        // fuzz_exodus, fourteenth run, where num_dim, stored as a second record dimension,
+        // read as 1).
+        const std::size_t dims = file.dim_length(*num_dim);
+        const char* axes[] = {"coordx", "coordy", "coordz"};
+        for (std::size_t a = 0; a < dims; ++a) {
+            if (!file.var(axes[a])) {
+                fail(ErrorCode::kParse,
+                     std::string("Exodus II: the node coordinates '") + axes[a] +
+                         "' are missing (and there is no 'coord')",
+                     file.where());
+            }
+        }
     }
     for (const char* map : {"node_num_map", "node_id_map"}) {
         if (const std::optional<int> v = file.var(map)) expect_shape(file, *v, map, {"num_nodes"});

@@ -47,6 +47,7 @@ struct ExodusSpec {
     std::string extra_count_dim;  // a count of result variables (num_glo_var ...) of 1, no names
     std::size_t extra_count = 1;  // its length
     std::string missing_dim;      // a dimension written under another name
+    std::string missing_var;      // a variable written under another name
     bool element_type = true;     // connect1's elem_type attribute
     std::string type_name = "TETRA4";      // its value
     std::optional<float> version = 8.03f;  // the global 'version' (none: not written)
@@ -103,7 +104,9 @@ void write_exodus(const fs::path& path, const ExodusSpec& spec, int format) {
     (void)d_len_string;
     const auto var = [&](const char* name, nc_type type, std::vector<int> dims) {
         int id = -1;
-        nc(nc_def_var(f, name, type, static_cast<int>(dims.size()), dims.data(), &id), name);
+        const std::string written = name == spec.missing_var ? "renamed_" + spec.missing_var : name;
+        nc(nc_def_var(f, written.c_str(), type, static_cast<int>(dims.size()), dims.data(), &id),
+           name);
         return id;
     };
     const int v_time = var("time_whole", NC_DOUBLE, {d_time});
@@ -289,6 +292,10 @@ TEST(BadInputExodus, EveryBadIdIsAnError) {
          "1, which has 0 sides"},
         {"fifth_side_of_a_tet", [](ExodusSpec& s) { s.side_sides[1] = 5; },
          "entry 1 names side 5 of element 2, a TETRA4 of element block 1, which has 4 sides"},
+        // fuzz_exodus, fourteenth run: no x coordinates (and num_dim read as 1): VTK's reader
+        // went on without them (SEGV in GetCacheOrRead).
+        {"no_x_coordinates", [](ExodusSpec& s) { s.missing_var = "coordx"; },
+         "Exodus II: the node coordinates 'coordx' are missing (and there is no 'coord')"},
         {"fewer_nodes_than_the_type", [](ExodusSpec& s) { s.type_name = "HEX8"; },
          "element block 1 (connect1): element type HEX8 needs at least 8 nodes an element, not 4 "
          "('num_nod_per_el1')"},
