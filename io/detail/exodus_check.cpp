@@ -538,11 +538,13 @@ void check_global_attributes(const NetcdfFile& file) {
              file.where());
     }
     // The names' buffers are this long: 1128547840 made VTK's reader take 8.8 GB and 29 s
-    // (fuzz_exodus, 39). The Exodus library allows at most NC_MAX_NAME (256).
+    // (fuzz_exodus, 39), and 0 left them one byte that the library filled without a
+    // terminator (ASan: strlen past it in RequestInformation, fuzz_exodus, 47). The Exodus
+    // library allows at most NC_MAX_NAME (256).
     if (const std::optional<double> length = file.global_number("maximum_name_length");
-        length && !(*length >= 0 && *length <= NC_MAX_NAME)) {
+        length && !(*length >= 1 && *length <= NC_MAX_NAME)) {
         fail(ErrorCode::kParse,
-             "Exodus II: 'maximum_name_length' is " + short_number(*length) + ", not 0 to " +
+             "Exodus II: 'maximum_name_length' is " + short_number(*length) + ", not 1 to " +
                  std::to_string(NC_MAX_NAME),
              file.where());
     }
