@@ -39,10 +39,16 @@ AnalyticFlow double_gyre(double amplitude, double epsilon, double omega) {
 
 std::optional<Vec3> rk4_step(const Flow& flow, const Vec3& x, double time, double dt,
                              const Vec3& normal, CellId& hint, bool check_end) {
-    auto tangent = [&](const Vec3& v) { return v - glm::dot(v, normal) * normal; };
     const auto k1 = flow.at(x, time, hint);
     if (!k1) return std::nullopt;
-    const Vec3 v1 = tangent(*k1);
+    return rk4_step_from(flow, x, *k1, time, dt, normal, hint, check_end);
+}
+
+std::optional<Vec3> rk4_step_from(const Flow& flow, const Vec3& x, const Vec3& velocity,
+                                  double time, double dt, const Vec3& normal, CellId& hint,
+                                  bool check_end) {
+    auto tangent = [&](const Vec3& v) { return v - glm::dot(v, normal) * normal; };
+    const Vec3 v1 = tangent(velocity);
     CellId h = hint;
     const double half = time + 0.5 * dt;
     const auto k2 = flow.at(x + 0.5 * dt * v1, half, h);

@@ -71,5 +71,10 @@ AnalyticFlow double_gyre(double amplitude = 0.1, double epsilon = 0.25,
 // check_end).
 std::optional<Vec3> rk4_step(const Flow& flow, const Vec3& x, double time, double dt,
                              const Vec3& normal, CellId& hint, bool check_end = true);
+// The same with the first stage's velocity v(x, time) given (a caller that kept it from the
+// step before): three lookups (four with check_end), the same result.
+std::optional<Vec3> rk4_step_from(const Flow& flow, const Vec3& x, const Vec3& velocity,
+                                  double time, double dt, const Vec3& normal, CellId& hint,
+                                  bool check_end = true);
 
 }  // namespace tr

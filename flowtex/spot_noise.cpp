@@ -224,7 +224,9 @@ void SpotNoise::advance() {
             return;
         }
         CellId flow_hint = flow_hints_[i];
-        const auto next = rk4_step(*flow_, positions_[i], t0, dt, Vec3(0.0), flow_hint, false);
+        // velocities_[i] is v(positions_[i], t0): the last step's (or the seeding's) lookup.
+        const auto next = rk4_step_from(*flow_, positions_[i], velocities_[i], t0, dt, Vec3(0.0),
+                                        flow_hint, false);
         std::optional<Vec3> v;
         if (next) v = flow_->at(*next, t0 + dt, flow_hint);
         CellId hint = hints_[i];

@@ -71,8 +71,9 @@ class SpotNoise {
                                     const Field& scalar, const Flow& flow,
                                     const SpotNoiseOptions& options);
 
-    // To the next frame (time + dt): an RK4 step per spot, those out reseeded. Cost: five
-    // velocity lookups and a point location per spot, parallel over spots.
+    // To the next frame (time + dt): an RK4 step per spot, those out reseeded. Cost: four
+    // velocity lookups (the first stage's is the last frame's end-point lookup, kept in
+    // velocities()) and a point location per spot, parallel over spots.
     void advance();
 
     int frame() const { return frame_; }
