@@ -6,6 +6,7 @@
 // variables.
 
 #include <io/detail/common.h>
+#include <io/detail/netcdf_file.h>
 #include <io/detail/readers.h>
 
 #include <algorithm>
@@ -19,134 +20,6 @@
 namespace tr::io_detail {
 
 namespace {
-
-// Values read in chunks of this many, so a large connectivity costs a bounded buffer.
-constexpr std::size_t kChunk = std::size_t(1) << 20;
-
-class NetcdfFile {
-  public:
-    NetcdfFile(const fs::path& path) : where_(path.string()) {
-        const int status = nc_open(path.c_str(), NC_NOWRITE, &id_);
-        if (status != NC_NOERR) {
-            fail(ErrorCode::kParse,
-                 std::string("cannot open as Exodus II (netCDF): ") + nc_strerror(status), where_);
-        }
-    }
-    ~NetcdfFile() { nc_close(id_); }
-    NetcdfFile(const NetcdfFile&) = delete;
-    NetcdfFile& operator=(const NetcdfFile&) = delete;
-
-    const std::string& where() const { return where_; }
-
-    std::optional<int> dim(const std::string& name) const {
-        int dim_id = -1;
-        if (nc_inq_dimid(id_, name.c_str(), &dim_id) != NC_NOERR) return std::nullopt;
-        return dim_id;
-    }
-    std::size_t dim_length(int dim_id) const {
-        std::size_t n = 0;
-        check(nc_inq_dimlen(id_, dim_id, &n), "dimension length");
-        return n;
-    }
-    // The named dimension's length; 0 when the file has no such dimension.
-    std::size_t length(const std::string& name) const {
-        const std::optional<int> d = dim(name);
-        return d ? dim_length(*d) : 0;
-    }
-    std::optional<int> var(const std::string& name) const {
-        int var_id = -1;
-        if (nc_inq_varid(id_, name.c_str(), &var_id) != NC_NOERR) return std::nullopt;
-        return var_id;
-    }
-    std::vector<int> var_dims(int var_id) const {
-        int ndims = 0;
-        check(nc_inq_varndims(id_, var_id, &ndims), "variable rank");
-        std::vector<int> dims(static_cast<std::size_t>(std::max(ndims, 0)));
-        if (ndims > 0) check(nc_inq_vardimid(id_, var_id, dims.data()), "variable dimensions");
-        return dims;
-    }
-    std::size_t var_size(int var_id) const {
-        std::size_t n = 1;
-        for (int d : var_dims(var_id)) n *= dim_length(d);
-        return n;
-    }
-    // A text attribute of a variable, upper-cased; empty when it has none (or is not text).
-    std::string upper_text_attribute(int var_id, const char* name) const {
-        nc_type type = NC_NAT;
-        std::size_t n = 0;
-        if (nc_inq_att(id_, var_id, name, &type, &n) != NC_NOERR || type != NC_CHAR) return {};
-        std::string text(std::min<std::size_t>(n, 256), '\0');
-        if (n > text.size()) return {};  // no element type is that long
-        check(nc_get_att_text(id_, var_id, name, text.data()), "attribute");
-        for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-        return text;
-    }
-    // A numeric global attribute's first value; nullopt when missing, text or empty.
-    std::optional<double> global_number(const char* name) const {
-        nc_type type = NC_NAT;
-        std::size_t n = 0;
-        if (nc_inq_att(id_, NC_GLOBAL, name, &type, &n) != NC_NOERR || type == NC_CHAR ||
-            type == NC_STRING || n == 0) {
-            return std::nullopt;
-        }
-        std::vector<double> values(n);
-        if (nc_get_att_double(id_, NC_GLOBAL, name, values.data()) != NC_NOERR) {
-            return std::nullopt;
-        }
-        return values[0];
-    }
-    bool is_integer(int var_id) const {
-        nc_type type = NC_NAT;
-        check(nc_inq_vartype(id_, var_id, &type), "variable type");
-        return type == NC_BYTE || type == NC_SHORT || type == NC_INT || type == NC_INT64 ||
-               type == NC_UBYTE || type == NC_USHORT || type == NC_UINT || type == NC_UINT64;
-    }
-    // Calls visit(index, value) for every value of an integer variable, in storage order.
-    template <class Visit>
-    void for_each_value(int var_id, const std::string& name, Visit&& visit) const {
-        if (!is_integer(var_id)) {
-            fail(ErrorCode::kParse, "'" + name + "' is not an integer variable", where_);
-        }
-        const std::vector<int> dims = var_dims(var_id);
-        const std::size_t total = var_size(var_id);
-        std::vector<long long> buffer;
-        if (dims.empty()) {
-            long long v = 0;
-            check(nc_get_var_longlong(id_, var_id, &v), "'" + name + "'");
-            visit(std::size_t(0), v);
-            return;
-        }
-        // Chunks of whole rows along the first dimension.
-        std::size_t row = 1;
-        for (std::size_t k = 1; k < dims.size(); ++k) row *= dim_length(dims[k]);
-        if (row == 0) return;
-        const std::size_t rows = total / row;
-        const std::size_t rows_per_chunk = std::max<std::size_t>(1, kChunk / row);
-        std::vector<std::size_t> start(dims.size(), 0), count(dims.size());
-        for (std::size_t k = 1; k < dims.size(); ++k) count[k] = dim_length(dims[k]);
-        for (std::size_t r = 0; r < rows; r += rows_per_chunk) {
-            start[0] = r;
-            count[0] = std::min(rows_per_chunk, rows - r);
-            buffer.resize(count[0] * row);
-            check(nc_get_vara_longlong(id_, var_id, start.data(), count.data(), buffer.data()),
-                  "'" + name + "'");
-            for (std::size_t i = 0; i < buffer.size(); ++i) visit(r * row + i, buffer[i]);
-        }
-    }
-
-  private:
-    void check(int status, const std::string& what) const {
-        // NC_ERANGE: a value that does not fit a long long (a uint64 above 2^63) - out of any
-        // range we accept, so it is reported as such by the caller's bounds.
-        if (status != NC_NOERR && status != NC_ERANGE) {
-            fail(ErrorCode::kParse,
-                 "cannot read Exodus II " + what + ": " + std::string(nc_strerror(status)), where_);
-        }
-    }
-
-    int id_ = -1;
-    std::string where_;
-};
 
 // A variable's dimensions must be exactly `expected` (names); `what` names it in the message.
 void expect_shape(const NetcdfFile& file, int var_id, const std::string& what,
@@ -241,6 +114,14 @@ void expect_refs_in_range(const NetcdfFile& file, const std::string& owner,
     });
 }
 
+// A block's element type (its connectivity's attribute elem_type), upper-cased and cut at its
+// first NUL (padding).
+std::string element_type(const NetcdfFile& file, int conn) {
+    std::string type = file.upper_text_attribute(conn, "elem_type");
+    type.resize(std::min(type.size(), type.find('\0')));
+    return type;
+}
+
 // A block's connectivity names its element type (attribute elem_type): without it the Exodus
 // library cannot describe the block, and VTK's reader skips it but still counts it, then
 // dereferences a null naming the blocks (GetSortedObjectInfo; fuzz_exodus, third run).
@@ -269,8 +150,7 @@ void expect_nodes_for_type(const NetcdfFile& file, int conn, const std::string& 
     static constexpr Minimum kMinimum[] = {
         {"CIR", 1}, {"SPH", 1}, {"BAR", 2}, {"TRU", 2}, {"BEA", 2}, {"EDG", 2}, {"STR", 2},
         {"TRI", 3}, {"SHE", 3}, {"QUA", 4}, {"TET", 4}, {"PYR", 5}, {"WED", 6}, {"HEX", 8}};
-    std::string type = file.upper_text_attribute(conn, "elem_type");
-    type.resize(std::min(type.size(), type.find('\0')));
+    const std::string type = element_type(file, conn);
     for (const Minimum& m : kMinimum) {
         if (type.rfind(m.prefix, 0) == 0 && per_element < m.nodes) {
             fail(ErrorCode::kParse,
@@ -663,8 +543,7 @@ void check_exodus_contents(const fs::path& path) {
             end += file.length("num_el_in_blk" + n);
             BlockSides block{end, 6, ""};
             if (const std::optional<int> conn = file.var("connect" + n)) {
-                block.type = file.upper_text_attribute(*conn, "elem_type");
-                block.type.resize(std::min(block.type.size(), block.type.find('\0')));
+                block.type = element_type(file, *conn);
                 block.sides = sides_of_type(block.type);
             }
             block_sides.push_back(block);
