@@ -1,6 +1,8 @@
 #include <core/check.h>
 #include <core/parallel.h>
 #include <project/splat_renderer.h>
+#include <project/splat_rows.h>
+#include <project/splat_stamps.h>
 
 #include <algorithm>
 #include <atomic>
@@ -9,11 +11,13 @@
 #include <iterator>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 namespace tr {
 namespace {
 
 constexpr int kTile = 32;
+constexpr std::size_t kPrefetch = 8;  // splats fetched ahead of the raster
 
 // floor / ceil of a pixel coordinate as an int, limited to +-1e9 (NaN to -1e9): a splat far off
 // the picture must not overflow the conversion.
@@ -22,48 +26,139 @@ int pixel_floor(double v) {
 }
 int pixel_ceil(double v) { return static_cast<int>(std::ceil(v > -1e9 ? std::min(v, 1e9) : -1e9)); }
 
-struct Splat {
-    Vec3 center;
-    Vec3 color;          // the transfer function's colour at the point's value
-    double kappa;        // its extinction
-    double h;            // the kernel's scale: the spacing, or the point's radius
-    double sx, sy;       // the projected centre, pixel units
-    double depth;        // along the view (orthographic: the ray parameter of the centre)
-    int x0, y0, x1, y1;  // pixels whose centres may lie in its footprint, inclusive
+// A splat as the raster reads it: one cache line.
+struct alignas(64) Splat {
+    float sx, sy;         // the projected centre, pixel units
+    double depth;         // orthographic: the ray parameter of the centre; perspective: its
+                          // distance from the eye (the per-splat order)
+    float kappa_h;        // its extinction times h
+    float h;              // the kernel's scale: the spacing, or the point's radius
+    Vec3f color;          // the transfer function's colour at the point's value
+    int x0, y0, x1, y1;   // pixels whose centres may lie in its footprint, inclusive
+    std::uint32_t point;  // its point
+    std::int32_t sheet;   // the sheet buffer: its sheet's place in the order (else 0)
+};
+static_assert(sizeof(Splat) == 64);
+
+// A tile's picture, planar (loaded from the picture before its splats, stored after), and its
+// sheet buffer: the current sheet's summed optical depth and depth-weighted colour. Row-major
+// with rows kTile long.
+struct TileBuffers {
+    static constexpr int kArea = kTile * kTile;
+    float r[kArea], g[kArea], b[kArea];
+    float tau[kArea] = {}, tau_r[kArea] = {}, tau_g[kArea] = {}, tau_b[kArea] = {};
+    int rows_from = kTile, rows_to = 0;  // the rows the current sheet touched: [from, to)
+
+    void touch(int local) {
+        rows_from = std::min(rows_from, local / kTile);
+        rows_to = std::max(rows_to, local / kTile + 1);
+    }
 };
 
-// A tile's sheet buffer: the current sheet's summed optical depth and depth-weighted colour
-// per pixel, row-major with rows kTile long.
-struct SheetTile {
-    float tau[kTile * kTile] = {};
-    float r[kTile * kTile] = {}, g[kTile * kTile] = {}, b[kTile * kTile] = {};
-};
-
-// Where an orthographic splat's fragments go: its pixels' rectangle in the tile, the tile's
-// corner, the picture (per-splat compositing) or the tile's sheet buffer, and the opaque depths.
-struct OrthographicTarget {
+// Where a splat's fragments go: its pixels' rectangle in the tile, the tile's corner and
+// buffers, and the opaque depths.
+struct TileTarget {
     int xa, xb, ya, yb;  // inclusive, inside the tile and the picture
     int x0, y0;          // the tile's corner
-    Vec3f* pixels;       // the picture, row-major
-    int width;
-    SheetTile* sheet;
+    TileBuffers* buffers;
+    int width;                   // the picture's
     const double* opaque_depth;  // or null (then unused)
 };
 
-// One splat of an orthographic view: rays are parallel, so the distance to each pixel's ray is
-// that on the image (in kernel units) and the centre's ray parameter is its depth. Per row, the
-// pixels whose centres lie strictly inside the support's circle; f read by rho^2. Returns the
-// fragments drawn. Instantiated per compositing and opaque geometry: the inner loop has no
-// branch but the opaque test.
+// The tile-local pixel `local`'s row of the tile's picture and sheet buffer.
+splat_rows::ColorRow color_row(TileBuffers& t, int local) {
+    return {t.r + local, t.g + local, t.b + local};
+}
+splat_rows::SheetRow sheet_row(TileBuffers& t, int local) {
+    t.touch(local);
+    return {t.tau + local, t.tau_r + local, t.tau_g + local, t.tau_b + local};
+}
+
+// `count` fragments of one splat on a row from the tile-local pixel `local` on: optical depth
+// tau[i] (0 where the opaque surface hides it: then the pixel is unchanged, exactly), colour
+// `colour`, summed into the sheet or composited over the picture.
+template <bool kSheets>
+void composite_row(TileBuffers& t, int local, const float* tau, int count, const Vec3f& colour) {
+    if constexpr (kSheets) {
+        splat_rows::add_to_sheet(sheet_row(t, local), tau, count, colour);
+    } else {
+        splat_rows::composite(color_row(t, local), tau, count, colour);
+    }
+}
+
+// One splat of an orthographic view at the stamps' scale: per row, the four stamps around its
+// centre's sub-pixel position blended (weights times kappa h) into the row's optical depths,
+// hidden ones zeroed, then composited. Returns the fragments drawn.
+template <bool kSheets, bool kOpaque>
+std::size_t raster_stamped(const Splat& s, const SplatStamps& stamps, const TileTarget& t) {
+    const SplatStamps::Placement p = stamps.place(s.sx, s.sy);
+    const float kappa_h = s.kappa_h;
+    const Vec3f colour = s.color;
+    const int width = stamps.width();
+    splat_rows::StampBlock block{{{p.stamp[0], p.stamp[1], p.stamp[2], p.stamp[3]},
+                                  {kappa_h * p.weight[0], kappa_h * p.weight[1],
+                                   kappa_h * p.weight[2], kappa_h * p.weight[3]}},
+                                 width,
+                                 std::max(0, t.ya - p.y0),
+                                 std::min(width - 1, t.yb - p.y0),
+                                 t.xa - p.x0,
+                                 t.xb - p.x0 + 1,
+                                 p.span_from,
+                                 p.span_to,
+                                 (p.y0 - t.y0) * kTile + (p.x0 - t.x0),
+                                 kTile};
+    if (block.v_from > block.v_to) return 0;
+    TileBuffers& buffers = *t.buffers;
+    if constexpr (!kOpaque) {
+        if constexpr (kSheets) {
+            buffers.touch(block.origin + block.v_from * kTile - (p.x0 - t.x0));
+            buffers.touch(block.origin + block.v_to * kTile - (p.x0 - t.x0));
+            return static_cast<std::size_t>(splat_rows::add_stamp_block_to_sheet(
+                {buffers.tau, buffers.tau_r, buffers.tau_g, buffers.tau_b}, block, colour));
+        } else {
+            const bool small = kappa_h * stamps.peak() <= splat_rows::kSmallDepth;
+            return static_cast<std::size_t>(splat_rows::composite_stamp_block(
+                {buffers.r, buffers.g, buffers.b}, block, colour, small));
+        }
+    }
+    // Opaque geometry: row by row, the hidden pixels' depths zeroed.
+    float tau[SplatStamps::kMaxWidth];
+    std::size_t count = 0;
+    splat_rows::StampRows rows = block.stamps;
+    for (int v = block.v_from; v <= block.v_to; ++v) {
+        const int u_from = std::max<int>(p.span_from[v], block.u_lo);
+        const int u_to = std::min<int>(p.span_to[v], block.u_hi);
+        const int n = u_to - u_from;
+        if (n <= 0) continue;
+        const std::size_t offset = static_cast<std::size_t>(v) * width + u_from;
+        for (int k = 0; k < 4; ++k) rows.stamp[k] = p.stamp[k] + offset;
+        const int y = p.y0 + v, x = p.x0 + u_from;
+        splat_rows::blend_stamps(tau, rows, n);
+        const double* depth =
+            t.opaque_depth + static_cast<std::size_t>(y) * t.width + static_cast<std::size_t>(x);
+        for (int i = 0; i < n; ++i) {
+            if (!(s.depth < depth[i])) tau[i] = 0.0f;
+        }
+        composite_row<kSheets>(buffers, (y - t.y0) * kTile + (x - t.x0), tau, n, colour);
+        count += static_cast<std::size_t>(n);
+    }
+    return count;
+}
+
+// One splat of an orthographic view without stamps (a per-point radius, or a footprint wider
+// than the stamps): rays are parallel, so the distance to each pixel's ray is that on the image
+// (in kernel units). Per row, the pixels whose centres lie strictly inside the support's circle;
+// f read by rho^2. Returns the fragments drawn.
 template <bool kSheets, bool kOpaque>
 std::size_t raster_orthographic(const Splat& s, double per_unit, const SplatFootprint& footprint,
-                                const OrthographicTarget& t) {
+                                const TileTarget& t) {
     const auto support_sq = static_cast<float>(footprint.support() * footprint.support());
     const auto to_kernel = static_cast<float>(1.0 / (per_unit * s.h));
-    const auto kappa_h = static_cast<float>(s.kappa * s.h);
-    const auto sx = static_cast<float>(s.sx), sy = static_cast<float>(s.sy);
-    const Vec3f colour(s.color);
+    const float kappa_h = s.kappa_h;
+    const float sx = s.sx, sy = s.sy;
+    const Vec3f colour = s.color;
     std::size_t count = 0;
+    float tau[kTile];
     for (int y = t.ya; y <= t.yb; ++y) {
         const float dy = (static_cast<float>(y) + 0.5f - sy) * to_kernel;
         const float dy_sq = dy * dy;
@@ -71,36 +166,100 @@ std::size_t raster_orthographic(const Splat& s, double per_unit, const SplatFoot
         const float half = std::sqrt(support_sq - dy_sq) / to_kernel;  // pixels
         const int from = std::max(t.xa, pixel_floor(sx - half - 0.5f) + 1);
         const int to = std::min(t.xb, pixel_ceil(sx + half - 0.5f) - 1);
+        if (from > to) continue;
         const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width);
-        const int local_row = (y - t.y0) * kTile - t.x0;
         for (int x = from; x <= to; ++x) {
-            if constexpr (kOpaque) {
-                if (!(s.depth < t.opaque_depth[row + static_cast<std::size_t>(x)])) continue;
-            }
             const float dx = (static_cast<float>(x) + 0.5f - sx) * to_kernel;
-            const float tau = kappa_h * footprint.of_squared_inside(dx * dx + dy_sq);
-            ++count;
-            if constexpr (kSheets) {
-                const int local = local_row + x;
-                t.sheet->tau[local] += tau;
-                t.sheet->r[local] += tau * colour.r;
-                t.sheet->g[local] += tau * colour.g;
-                t.sheet->b[local] += tau * colour.b;
-            } else {
-                // 1 - exp rather than expm1: several times faster, and its absolute error (6e-8
-                // in float) is far below the picture's 8 bits.
-                const float alpha = 1.0f - std::exp(-tau);
-                Vec3f& dst = t.pixels[row + static_cast<std::size_t>(x)];
-                dst = colour * alpha + (1.0f - alpha) * dst;
+            float& f = tau[x - from];
+            f = kappa_h * footprint.of_squared_inside(dx * dx + dy_sq);
+            if constexpr (kOpaque) {
+                if (!(s.depth < t.opaque_depth[row + static_cast<std::size_t>(x)])) f = 0.0f;
             }
         }
+        composite_row<kSheets>(*t.buffers, (y - t.y0) * kTile + (from - t.x0), tau, to - from + 1,
+                               colour);
+        count += static_cast<std::size_t>(to - from + 1);
     }
     return count;
 }
 
-}  // namespace
+// One orthographic splat: from the stamps when there are (a lattice's splats), else by the
+// footprint's table.
+template <bool kSheets, bool kOpaque>
+std::size_t raster_splat(const Splat& s, const TileTarget& t, const SplatStamps* stamps,
+                         double per_unit, const SplatFootprint& footprint) {
+    return stamps ? raster_stamped<kSheets, kOpaque>(s, *stamps, t)
+                  : raster_orthographic<kSheets, kOpaque>(s, per_unit, footprint, t);
+}
 
-namespace {
+// The indices of `depth` by decreasing depth, ties by increasing index (a stable order): two
+// halves sorted concurrently, then merged.
+std::vector<std::uint32_t> order_back_to_front(const std::vector<double>& depth) {
+    struct Entry {
+        double depth;
+        std::uint32_t index;
+    };
+    std::vector<Entry> entries(depth.size());
+    for (std::size_t i = 0; i < depth.size(); ++i) {
+        entries[i] = {depth[i], static_cast<std::uint32_t>(i)};
+    }
+    auto before = [](const Entry& a, const Entry& b) {
+        return a.depth != b.depth ? a.depth > b.depth : a.index < b.index;
+    };
+    const auto middle = entries.begin() + static_cast<std::ptrdiff_t>(entries.size() / 2);
+    parallel_for(0, 2, 1, [&](std::size_t half) {
+        if (half == 0) {
+            std::sort(entries.begin(), middle, before);
+        } else {
+            std::sort(middle, entries.end(), before);
+        }
+    });
+    std::inplace_merge(entries.begin(), middle, entries.end(), before);
+    std::vector<std::uint32_t> order(entries.size());
+    for (std::size_t i = 0; i < entries.size(); ++i) order[i] = entries[i].index;
+    return order;
+}
+
+// The indices of `sheet` (each >= 0) grouped by sheet, the sheets in the order `further`
+// (a strict weak order on sheet indices: true when the first is composited first), each sheet's
+// in increasing index. Counting when the sheets' indices are few against the splats (a lattice:
+// O(n)), else a stable sort. Stores the number of distinct sheets.
+template <class Further>
+std::vector<std::uint32_t> order_by_sheet(const std::vector<std::int64_t>& sheet, Further further,
+                                          std::size_t* distinct) {
+    const std::int64_t largest = *std::max_element(sheet.begin(), sheet.end());
+    std::vector<std::uint32_t> order(sheet.size());
+    if (largest > static_cast<std::int64_t>(4 * sheet.size() + 1024)) {
+        std::iota(order.begin(), order.end(), 0u);
+        std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+            return sheet[a] != sheet[b] && further(sheet[a], sheet[b]);
+        });
+        std::size_t count = 0;
+        for (std::size_t i = 0; i < order.size(); ++i) {
+            count += i == 0 || sheet[order[i]] != sheet[order[i - 1]];
+        }
+        *distinct = count;
+        return order;
+    }
+    std::vector<std::size_t> start(static_cast<std::size_t>(largest) + 1, 0);
+    for (std::int64_t s : sheet) ++start[static_cast<std::size_t>(s)];
+    std::vector<std::int64_t> used;
+    for (std::size_t s = 0; s < start.size(); ++s) {
+        if (start[s] > 0) used.push_back(static_cast<std::int64_t>(s));
+    }
+    *distinct = used.size();
+    std::sort(used.begin(), used.end(), further);
+    std::size_t next = 0;
+    for (std::int64_t s : used) {
+        const std::size_t count = start[static_cast<std::size_t>(s)];
+        start[static_cast<std::size_t>(s)] = next;
+        next += count;
+    }
+    for (std::size_t i = 0; i < sheet.size(); ++i) {
+        order[start[static_cast<std::size_t>(sheet[i])]++] = static_cast<std::uint32_t>(i);
+    }
+    return order;
+}
 
 // The distinct coordinates per axis and their extents.
 void axis_counts(std::span<const Vec3> points, double count[3], double extent[3]) {
@@ -164,12 +323,8 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
         std::abs(camera.project(camera.eye() + camera.forward()).y -
                  camera.project(camera.eye() + camera.forward() + camera.up()).y);
 
-    // The splats in view, back to front.
-    std::vector<Splat> splats;
-    std::vector<double> depth;
-    for (std::size_t i = 0; i < in.points.size(); ++i) {
-        const double kappa = in.tf->extinction(in.scalar[i]);
-        if (!(kappa > 0)) continue;
+    // Point i as a splat of extinction kappa (> 0), but its colour; false when it is not in view.
+    auto make_splat = [&](std::size_t i, double kappa, Splat& splat) {
         const Vec3& p = in.points[i];
         const Vec3 s = camera.project(p);
         const double kernel_h = in.radius.empty() ? in.spacing : static_cast<double>(in.radius[i]);
@@ -178,72 +333,116 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
         if (orthographic) {
             r_px = radius * per_unit;
         } else {
-            if (!(s.z > radius)) continue;  // its support reaches behind the eye
-            // A sphere of the support's radius projects within this (its nearest depth, and
-            // the stretch off the axis, distance over depth).
+            if (!(s.z > radius)) return false;  // its support reaches behind the eye
+            // A sphere of the support's radius projects within this (its nearest depth, and the
+            // stretch off the axis, distance over depth).
             const double distance = glm::length(p - camera.eye());
             r_px = radius * per_unit / (s.z - radius) * (distance / s.z);
         }
-        Splat splat{p,
-                    in.tf->color(in.scalar[i]),
-                    kappa,
-                    kernel_h,
-                    s.x,
-                    s.y,
-                    s.z,
-                    pixel_floor(s.x - r_px - 0.5),
-                    pixel_floor(s.y - r_px - 0.5),
-                    pixel_ceil(s.x + r_px - 0.5),
-                    pixel_ceil(s.y + r_px - 0.5)};
-        splat.x0 = std::max(splat.x0, 0), splat.y0 = std::max(splat.y0, 0);
-        splat.x1 = std::min(splat.x1, w - 1), splat.y1 = std::min(splat.y1, h - 1);
-        if (splat.x0 > splat.x1 || splat.y0 > splat.y1) continue;
-        splats.push_back(splat);
-        depth.push_back(orthographic ? s.z : glm::length(p - camera.eye()));
-    }
-    std::vector<std::uint32_t> order(splats.size());
-    std::iota(order.begin(), order.end(), 0u);
+        splat = Splat{static_cast<float>(s.x),
+                      static_cast<float>(s.y),
+                      orthographic ? s.z : glm::length(p - camera.eye()),
+                      static_cast<float>(kappa * kernel_h),
+                      static_cast<float>(kernel_h),
+                      Vec3f(0.0f),
+                      std::max(pixel_floor(s.x - r_px - 0.5), 0),
+                      std::max(pixel_floor(s.y - r_px - 0.5), 0),
+                      std::min(pixel_ceil(s.x + r_px - 0.5), w - 1),
+                      std::min(pixel_ceil(s.y + r_px - 0.5), h - 1),
+                      static_cast<std::uint32_t>(i),
+                      0};
+        return splat.x0 <= splat.x1 && splat.y0 <= splat.y1;
+    };
+    // Each point's splat (concurrently, in blocks), in the points' order; `drawn` lists those
+    // with a non-zero extinction in view.
+    constexpr std::size_t kBlock = 16384;
+    const std::size_t n = in.points.size();
+    std::vector<Splat> splats(n);
+    std::vector<std::vector<std::uint32_t>> drawn_blocks((n + kBlock - 1) / kBlock);
+    parallel_for(0, drawn_blocks.size(), 1, [&](std::size_t block) {
+        for (std::size_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
+            const double kappa = in.tf->extinction(in.scalar[i]);
+            if (!(kappa > 0) || !make_splat(i, kappa, splats[i])) continue;
+            splats[i].color = Vec3f(in.tf->color(in.scalar[i]));
+            drawn_blocks[block].push_back(static_cast<std::uint32_t>(i));
+        }
+    });
+    std::vector<std::uint32_t> drawn;
+    for (const auto& block : drawn_blocks) drawn.insert(drawn.end(), block.begin(), block.end());
+    // Back to front (order: positions in `drawn`).
     const bool sheets = in.compositing == SplatCompositing::kSheetBuffer;
-    std::vector<std::int64_t> sheet;  // sheet buffer: each splat's sheet
+    std::vector<std::uint32_t> order;
+    std::vector<std::int64_t> sheet;  // sheet buffer: each drawn point's sheet
     int axis = -1;
-    if (sheets && !splats.empty()) {
+    std::size_t sheet_count = 0;
+    if (sheets && !drawn.empty()) {
         // The axis most parallel to the view, and the sheets of thickness `spacing` across it.
         Vec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-        for (const Splat& s : splats) lo = glm::min(lo, s.center), hi = glm::max(hi, s.center);
+        for (std::uint32_t i : drawn)
+            lo = glm::min(lo, in.points[i]), hi = glm::max(hi, in.points[i]);
         const Vec3 view = orthographic ? camera.forward() : 0.5 * (lo + hi) - camera.eye();
         axis = 0;
         for (int k = 1; k < 3; ++k) {
             if (std::abs(view[k]) > std::abs(view[axis])) axis = k;
         }
-        sheet.resize(splats.size());
-        for (std::size_t i = 0; i < splats.size(); ++i) {
-            sheet[i] = std::llround((splats[i].center[axis] - lo[axis]) / in.spacing);
+        sheet.resize(drawn.size());
+        for (std::size_t k = 0; k < drawn.size(); ++k) {
+            sheet[k] = std::llround((in.points[drawn[k]][axis] - lo[axis]) / in.spacing);
         }
         // Back to front: orthographic, further along the view; perspective, further from the eye
-        // across the sheets (ties, sheets either side of the eye, by index).
+        // across the sheets (ties, sheets either side of the eye, by index). Within a sheet the
+        // order does not matter (its splats are summed): the points' order.
         const double sign = view[axis] < 0 ? -1.0 : 1.0;
         auto key = [&](std::int64_t index) {
             const double plane = lo[axis] + static_cast<double>(index) * in.spacing;
             return orthographic ? sign * plane : std::abs(plane - camera.eye()[axis]);
         };
-        std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-            if (sheet[a] == sheet[b]) return depth[a] > depth[b];
-            const double ka = key(sheet[a]), kb = key(sheet[b]);
-            return ka != kb ? ka > kb : sheet[a] > sheet[b];
-        });
+        auto further = [&](std::int64_t a, std::int64_t b) {
+            const double ka = key(a), kb = key(b);
+            return ka != kb ? ka > kb : a > b;
+        };
+        order = order_by_sheet(sheet, further, &sheet_count);
     } else {
-        std::stable_sort(order.begin(), order.end(),
-                         [&](std::uint32_t a, std::uint32_t b) { return depth[a] > depth[b]; });
+        std::vector<double> depth(drawn.size());
+        for (std::size_t k = 0; k < drawn.size(); ++k) depth[k] = splats[drawn[k]].depth;
+        order = order_back_to_front(depth);
     }
-    // Binned into tiles in that order.
+    // The points drawn, back to front; with the sheet buffer, each splat's sheet as its place
+    // among the sheets.
+    std::vector<std::uint32_t> sequence(drawn.size());
+    for (std::size_t k = 0; k < drawn.size(); ++k) sequence[k] = drawn[order[k]];
+    for (std::size_t k = 1; sheets && k < sequence.size(); ++k) {
+        splats[sequence[k]].sheet =
+            splats[sequence[k - 1]].sheet + (sheet[order[k]] != sheet[order[k - 1]] ? 1 : 0);
+    }
+    // Binned into tiles in that order: tile t's splats are binned[bin_start[t], bin_start[t + 1]).
     const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
-    std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(tiles_x) * tiles_y);
-    for (std::uint32_t i : order) {
+    const std::size_t tiles = static_cast<std::size_t>(tiles_x) * tiles_y;
+    // Each drawn splat's tiles, inclusive (read in the order above: a small array).
+    struct TileSpan {
+        int x0, y0, x1, y1;
+    };
+    std::vector<TileSpan> tile_span(n);
+    for (std::uint32_t i : drawn) {
         const Splat& s = splats[i];
-        for (int ty = s.y0 / kTile; ty <= s.y1 / kTile; ++ty) {
-            for (int tx = s.x0 / kTile; tx <= s.x1 / kTile; ++tx) {
-                bins[static_cast<std::size_t>(ty) * tiles_x + tx].push_back(i);
+        tile_span[i] = {s.x0 / kTile, s.y0 / kTile, s.x1 / kTile, s.y1 / kTile};
+    }
+    auto for_each_tile = [&](std::uint32_t i, auto&& body) {
+        const TileSpan& span = tile_span[i];
+        for (int ty = span.y0; ty <= span.y1; ++ty) {
+            for (int tx = span.x0; tx <= span.x1; ++tx) {
+                body(static_cast<std::size_t>(ty) * tiles_x + tx);
             }
+        }
+    };
+    std::vector<std::size_t> bin_start(tiles + 1, 0);
+    for (std::uint32_t i : drawn) for_each_tile(i, [&](std::size_t t) { ++bin_start[t + 1]; });
+    std::partial_sum(bin_start.begin(), bin_start.end(), bin_start.begin());
+    std::vector<std::uint32_t> binned(bin_start.back());
+    {
+        std::vector<std::size_t> next(bin_start.begin(), bin_start.end() - 1);
+        for (std::uint32_t i : sequence) {
+            for_each_tile(i, [&](std::size_t t) { binned[next[t]++] = i; });
         }
     }
 
@@ -252,110 +451,108 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
     const double support_sq = support * support;
     const SplatFootprint& fp = *in.footprint;
     const double* const opaque = in.opaque_depth ? in.opaque_depth->data() : nullptr;
+    // Orthographic splats of one scale (a lattice's) are drawn from stamps.
+    std::optional<SplatStamps> stamps;
+    if (orthographic && in.radius.empty() && SplatStamps::fits(fp, per_unit * in.spacing)) {
+        stamps.emplace(fp, per_unit * in.spacing);
+    }
+    const auto raster_ortho =
+        sheets ? (opaque ? raster_splat<true, true> : raster_splat<true, false>)
+               : (opaque ? raster_splat<false, true> : raster_splat<false, false>);
     std::atomic<std::size_t> fragments{0};
-    parallel_for(0, bins.size(), 1, [&](std::size_t tile) {
+    parallel_for(0, tiles, 1, [&](std::size_t tile) {
         const int x0 = static_cast<int>(tile % tiles_x) * kTile;
         const int y0 = static_cast<int>(tile / tiles_x) * kTile;
         const int x1 = std::min(x0 + kTile, w) - 1, y1 = std::min(y0 + kTile, h) - 1;
+        if (bin_start[tile] == bin_start[tile + 1]) return;
         Ray rays[kTile * kTile];
         for (int y = y0; !orthographic && y <= y1; ++y) {
             for (int x = x0; x <= x1; ++x)
                 rays[(y - y0) * kTile + (x - x0)] = camera.pixel_ray(x, y);
         }
+        TileBuffers buffers;
+        auto pixel = [&](int x, int y) -> Vec3f& {
+            return image.pixels[static_cast<std::size_t>(y) * w + x];
+        };
+        for (int y = y0; y <= y1; ++y) {
+            for (int x = x0; x <= x1; ++x) {
+                const int local = (y - y0) * kTile + (x - x0);
+                const Vec3f& p = pixel(x, y);
+                buffers.r[local] = p.r, buffers.g[local] = p.g, buffers.b[local] = p.b;
+            }
+        }
         std::size_t count = 0;
-        // The sheet buffer: the current sheet's summed optical depth and depth-weighted colour.
-        SheetTile sheet_buffer;
-        float* const sheet_tau = sheet_buffer.tau;
-        float* const sheet_r = sheet_buffer.r;
-        float* const sheet_g = sheet_buffer.g;
-        float* const sheet_b = sheet_buffer.b;
         std::int64_t current = 0;
         bool open = false;
+        // The sheet composited over the tile: alpha = 1 - e^-tau, colour sum(c tau) / tau alpha.
         auto flush = [&] {
-            for (int y = y0; y <= y1; ++y) {
-                for (int x = x0; x <= x1; ++x) {
-                    const int local = (y - y0) * kTile + (x - x0);
-                    const float tau = sheet_tau[local];
-                    if (!(tau > 0)) continue;
-                    // 1 - exp in float: absolute error about 6e-8, far below the float
-                    // picture's 8-bit output (expm1 in double cost a third of the raster).
-                    const float alpha = 1.0f - std::exp(-tau);
-                    const float scale = alpha / tau;
-                    Vec3f& dst = image.pixels[static_cast<std::size_t>(y) * w + x];
-                    dst = Vec3f(sheet_r[local] * scale, sheet_g[local] * scale,
-                                sheet_b[local] * scale) +
-                          (1.0f - alpha) * dst;
-                    sheet_tau[local] = sheet_r[local] = sheet_g[local] = sheet_b[local] = 0.0f;
-                }
+            const int from = buffers.rows_from * kTile, to = buffers.rows_to * kTile;
+            if (from < to) {
+                splat_rows::composite_sheet(color_row(buffers, from),
+                                            {buffers.tau + from, buffers.tau_r + from,
+                                             buffers.tau_g + from, buffers.tau_b + from},
+                                            to - from);
             }
+            buffers.rows_from = kTile, buffers.rows_to = 0;
         };
-        // One fragment: optical depth `tau` of splat colour `colour` on pixel (x, y).
-        auto add = [&](int x, int y, float tau, const Vec3f& colour) {
-            if (sheets) {
-                const int local = (y - y0) * kTile + (x - x0);
-                sheet_tau[local] += tau;
-                sheet_r[local] += tau * colour.r;
-                sheet_g[local] += tau * colour.g;
-                sheet_b[local] += tau * colour.b;
-                return;
+        const std::size_t bin_end = bin_start[tile + 1];
+        for (std::size_t k = bin_start[tile]; k < bin_end; ++k) {
+            // The tile's splats lie scattered through the array: fetched a few ahead.
+            if (k + kPrefetch < bin_end) {
+                const char* ahead = reinterpret_cast<const char*>(&splats[binned[k + kPrefetch]]);
+                __builtin_prefetch(ahead);
+                __builtin_prefetch(ahead + sizeof(Splat) - 1);
             }
-            // 1 - exp rather than expm1: several times faster, and its absolute error (6e-8 in
-            // float) is far below the picture's 8 bits.
-            const float alpha = 1.0f - std::exp(-tau);
-            Vec3f& dst = image.pixels[static_cast<std::size_t>(y) * w + x];
-            dst = colour * alpha + (1.0f - alpha) * dst;
-        };
-        for (std::uint32_t i : bins[tile]) {
+            const std::uint32_t i = binned[k];
             const Splat& s = splats[i];
             if (sheets) {
-                if (open && sheet[i] != current) flush();
-                current = sheet[i], open = true;
+                if (open && s.sheet != current) flush();
+                current = s.sheet, open = true;
             }
-            const Vec3f colour(s.color);
             const int ya = std::max(s.y0, y0), yb = std::min(s.y1, y1);
             const int xa = std::max(s.x0, x0), xb = std::min(s.x1, x1);
+            const TileTarget target{xa, xb, ya, yb, x0, y0, &buffers, w, opaque};
             if (orthographic) {
                 if (!(s.depth > 0)) continue;
-                const OrthographicTarget target{
-                    xa, xb, ya, yb, x0, y0, image.pixels.data(), w, &sheet_buffer, opaque};
-                if (sheets) {
-                    count += opaque ? raster_orthographic<true, true>(s, per_unit, fp, target)
-                                    : raster_orthographic<true, false>(s, per_unit, fp, target);
-                } else {
-                    count += opaque ? raster_orthographic<false, true>(s, per_unit, fp, target)
-                                    : raster_orthographic<false, false>(s, per_unit, fp, target);
-                }
+                count += raster_ortho(s, target, stamps ? &*stamps : nullptr, per_unit, fp);
                 continue;
             }
-            const double kappa_h = s.kappa * s.h, reach_sq = support_sq * s.h * s.h;
+            const double kernel_h = s.h, reach_sq = support_sq * kernel_h * kernel_h;
+            const Vec3& center = in.points[s.point];
             for (int y = ya; y <= yb; ++y) {
                 for (int x = xa; x <= xb; ++x) {
-                    const Ray& ray = rays[(y - y0) * kTile + (x - x0)];
-                    const Vec3 v = s.center - ray.origin;
+                    const int local = (y - y0) * kTile + (x - x0);
+                    const Ray& ray = rays[local];
+                    const Vec3 v = center - ray.origin;
                     const double t = glm::dot(v, ray.direction);  // the centre's ray parameter
                     const double rho_sq = glm::dot(v, v) - t * t;
                     if (!(rho_sq < reach_sq) || !(t > 0)) continue;
-                    const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
-                    if (in.opaque_depth && !(t < (*in.opaque_depth)[pixel])) continue;
-                    const double rho = std::sqrt(std::max(rho_sq, 0.0)) / s.h;
+                    if (opaque && !(t < opaque[static_cast<std::size_t>(y) * w + x])) continue;
+                    const double rho = std::sqrt(std::max(rho_sq, 0.0)) / kernel_h;
+                    const auto tau = s.kappa_h * static_cast<float>(fp(rho));
                     ++count;
-                    add(x, y, static_cast<float>(kappa_h * (*in.footprint)(rho)), colour);
+                    if (sheets) {
+                        composite_row<true>(buffers, local, &tau, 1, s.color);
+                    } else {
+                        composite_row<false>(buffers, local, &tau, 1, s.color);
+                    }
                 }
             }
         }
         if (open) flush();
+        for (int y = y0; y <= y1; ++y) {
+            for (int x = x0; x <= x1; ++x) {
+                const int local = (y - y0) * kTile + (x - x0);
+                pixel(x, y) = Vec3f(buffers.r[local], buffers.g[local], buffers.b[local]);
+            }
+        }
         fragments += count;
     });
     if (stats) {
-        stats->splats_drawn = splats.size();
+        stats->splats_drawn = drawn.size();
         stats->fragments = fragments.load();
         stats->sheet_axis = axis;
-        if (sheets) {
-            std::vector<std::int64_t> distinct = sheet;
-            std::sort(distinct.begin(), distinct.end());
-            stats->sheets = static_cast<std::size_t>(std::unique(distinct.begin(), distinct.end()) -
-                                                     distinct.begin());
-        }
+        stats->sheets = sheet_count;
         stats->raster_ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();

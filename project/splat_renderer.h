@@ -28,6 +28,12 @@
 //
 // Opaque geometry: a splat is drawn on a pixel only where its centre lies in front of the
 // pixel's surface. Splats whose support reaches behind a perspective eye are not drawn.
+//
+// The raster: the picture in tiles of 32^2 pixels, drawn concurrently, each tile's splats in the
+// order above. Orthographic splats of one scale (a lattice's: no per-point radius) are drawn from
+// footprint stamps (project/splat_stamps.h: within 2.3e-4 of the footprint's peak) by the
+// vectorised row loops of project/splat_rows.h; other orthographic splats read the footprint's
+// table per pixel by rho^2, perspective ones by the distance from each pixel's ray.
 
 #include <core/camera.h>
 #include <core/image.h>
@@ -61,7 +67,7 @@ struct SplatInputs {
 
 struct SplatStats {
     std::size_t splats_drawn = 0;  // points with a non-zero extinction in view
-    std::size_t fragments = 0;     // (splat, pixel) pairs composited
+    std::size_t fragments = 0;     // (splat, pixel) pairs rasterised (some hidden or 0 at the rim)
     std::size_t sheets = 0;        // sheet buffer: the sheets holding a splat in view (else 0)
     int sheet_axis = -1;           // sheet buffer: the axis across the sheets (0, 1, 2; else -1)
     double raster_ms = 0;

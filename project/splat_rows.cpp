@@ -1,0 +1,168 @@
+#include <core/fast_exp.h>
+#include <project/splat_rows.h>
+
+#include <algorithm>
+
+// Built for AVX2 too where the target has ifunc support (x86-64 GNU/Linux).
+#if defined(__x86_64__) && defined(__linux__) && !defined(__SANITIZE_ADDRESS__)
+#define TR_ROW_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define TR_ROW_CLONES
+#endif
+
+namespace tr::splat_rows {
+namespace {
+
+// e^x for -kSmallDepth <= x <= 0: 1 + x + x^2/2 + x^3/6 + x^4/24 (exactly 1 at 0).
+inline float exp_small(float x) {
+    return 1.0f + x * (1.0f + x * (0.5f + x * (1.0f / 6.0f + x * (1.0f / 24.0f))));
+}
+
+}  // namespace
+
+TR_ROW_CLONES void blend_stamps(float* __restrict out, const StampRows& stamps, int n) {
+    const float* __restrict a = stamps.stamp[0];
+    const float* __restrict b = stamps.stamp[1];
+    const float* __restrict c = stamps.stamp[2];
+    const float* __restrict d = stamps.stamp[3];
+    const float w0 = stamps.weight[0], w1 = stamps.weight[1];
+    const float w2 = stamps.weight[2], w3 = stamps.weight[3];
+    for (int i = 0; i < n; ++i) out[i] = w0 * a[i] + w1 * b[i] + w2 * c[i] + w3 * d[i];
+}
+
+TR_ROW_CLONES void composite(const ColorRow& row, const float* __restrict tau, int n,
+                             const Vec3f& c) {
+    float* __restrict r = row.r;
+    float* __restrict g = row.g;
+    float* __restrict b = row.b;
+    const float cr = c.r, cg = c.g, cb = c.b;
+    for (int i = 0; i < n; ++i) {
+        const float e = exp_nonpositive(-tau[i]), alpha = 1.0f - e;
+        r[i] = e * r[i] + alpha * cr;
+        g[i] = e * g[i] + alpha * cg;
+        b[i] = e * b[i] + alpha * cb;
+    }
+}
+
+namespace {
+
+// The loops with every pointer a restrict parameter (GCC vectorises without alias checks).
+template <bool kSmall>
+inline void composite_stamps_loop(float* __restrict r, float* __restrict g, float* __restrict b,
+                                  const float* __restrict sa, const float* __restrict sb,
+                                  const float* __restrict sc, const float* __restrict sd,
+                                  const float* w, int n, const Vec3f& c) {
+    const float w0 = w[0], w1 = w[1], w2 = w[2], w3 = w[3];
+    const float cr = c.r, cg = c.g, cb = c.b;
+    for (int i = 0; i < n; ++i) {
+        const float tau = w0 * sa[i] + w1 * sb[i] + w2 * sc[i] + w3 * sd[i];
+        const float e = kSmall ? exp_small(-tau) : exp_nonpositive(-tau), alpha = 1.0f - e;
+        r[i] = e * r[i] + alpha * cr;
+        g[i] = e * g[i] + alpha * cg;
+        b[i] = e * b[i] + alpha * cb;
+    }
+}
+
+inline void add_stamps_loop(float* __restrict t, float* __restrict r, float* __restrict g,
+                            float* __restrict b, const float* __restrict sa,
+                            const float* __restrict sb, const float* __restrict sc,
+                            const float* __restrict sd, const float* w, int n, const Vec3f& c) {
+    const float w0 = w[0], w1 = w[1], w2 = w[2], w3 = w[3];
+    const float cr = c.r, cg = c.g, cb = c.b;
+    for (int i = 0; i < n; ++i) {
+        const float tau = w0 * sa[i] + w1 * sb[i] + w2 * sc[i] + w3 * sd[i];
+        t[i] += tau;
+        r[i] += tau * cr;
+        g[i] += tau * cg;
+        b[i] += tau * cb;
+    }
+}
+
+inline void composite_sheet_loop(float* __restrict r, float* __restrict g, float* __restrict b,
+                                 float* __restrict t, float* __restrict tr, float* __restrict tg,
+                                 float* __restrict tb, int n) {
+    for (int i = 0; i < n; ++i) {
+        const float e = exp_nonpositive(-t[i]);
+        const float scale = t[i] > 0.0f ? (1.0f - e) / t[i] : 0.0f;
+        r[i] = tr[i] * scale + e * r[i];
+        g[i] = tg[i] * scale + e * g[i];
+        b[i] = tb[i] * scale + e * b[i];
+        t[i] = tr[i] = tg[i] = tb[i] = 0.0f;
+    }
+}
+
+}  // namespace
+
+namespace {
+
+// For each row of the block: the first pixel's offset from the tile's origin (ahead of the
+// block's origin), the offset into the stamps and the pixel count.
+template <class Row>
+inline int for_each_block_row(const StampBlock& block, Row&& row) {
+    // Rows are widened to a multiple of 8 pixels where the stamps and the clip allow (the
+    // samples outside the span are 0: those pixels stay as they are), so that the vector loops
+    // run whole.
+    const int lo = std::max(0, block.u_lo), hi = std::min(block.width, block.u_hi);
+    int drawn = 0;
+    for (int v = block.v_from; v <= block.v_to; ++v) {
+        int from = std::max<int>(block.span_from[v], block.u_lo);
+        int to = std::min<int>(block.span_to[v], block.u_hi);
+        if (from >= to) continue;
+        drawn += to - from;
+        const int whole = (to - from + 7) & ~7;
+        to = std::min(from + whole, hi);
+        from = std::max(to - whole, lo);
+        row(block.origin + v * block.stride + from, v * block.width + from, to - from);
+    }
+    return drawn;
+}
+
+}  // namespace
+
+TR_ROW_CLONES int composite_stamp_block(const ColorRow& tile, const StampBlock& block,
+                                        const Vec3f& c, bool small) {
+    const auto& s = block.stamps.stamp;
+    const float* w = block.stamps.weight;
+    return for_each_block_row(block, [&](int pixel, int sample, int n) {
+        if (small) {
+            composite_stamps_loop<true>(tile.r + pixel, tile.g + pixel, tile.b + pixel,
+                                        s[0] + sample, s[1] + sample, s[2] + sample, s[3] + sample,
+                                        w, n, c);
+        } else {
+            composite_stamps_loop<false>(tile.r + pixel, tile.g + pixel, tile.b + pixel,
+                                         s[0] + sample, s[1] + sample, s[2] + sample, s[3] + sample,
+                                         w, n, c);
+        }
+    });
+}
+
+TR_ROW_CLONES int add_stamp_block_to_sheet(const SheetRow& tile, const StampBlock& block,
+                                           const Vec3f& c) {
+    const auto& s = block.stamps.stamp;
+    const float* w = block.stamps.weight;
+    return for_each_block_row(block, [&](int pixel, int sample, int n) {
+        add_stamps_loop(tile.tau + pixel, tile.r + pixel, tile.g + pixel, tile.b + pixel,
+                        s[0] + sample, s[1] + sample, s[2] + sample, s[3] + sample, w, n, c);
+    });
+}
+
+TR_ROW_CLONES void add_to_sheet(const SheetRow& sheet, const float* __restrict tau, int n,
+                                const Vec3f& c) {
+    float* __restrict t = sheet.tau;
+    float* __restrict r = sheet.r;
+    float* __restrict g = sheet.g;
+    float* __restrict b = sheet.b;
+    const float cr = c.r, cg = c.g, cb = c.b;
+    for (int i = 0; i < n; ++i) {
+        t[i] += tau[i];
+        r[i] += tau[i] * cr;
+        g[i] += tau[i] * cg;
+        b[i] += tau[i] * cb;
+    }
+}
+
+TR_ROW_CLONES void composite_sheet(const ColorRow& row, const SheetRow& sheet, int n) {
+    composite_sheet_loop(row.r, row.g, row.b, sheet.tau, sheet.r, sheet.g, sheet.b, n);
+}
+
+}  // namespace tr::splat_rows
