@@ -10,13 +10,22 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <optional>
+#include <span>
 
 namespace tr {
 namespace {
 
 constexpr int kTile = 32;
+// Each row of a tile's buffers has kApron pixels more either side, which rows of splats may
+// spill into so that the vector loops run on whole multiples of 8 (they are never stored).
+constexpr int kApron = 8;
+constexpr int kStride = kTile + 2 * kApron;
+
+// The index in a tile's buffers of the pixel at (dx, dy) from the tile's corner.
+constexpr int tile_index(int dx, int dy) { return dy * kStride + dx + kApron; }
 constexpr std::size_t kPrefetch = 8;  // splats fetched ahead of the raster
 
 // floor / ceil of a pixel coordinate as an int, limited to +-1e9 (NaN to -1e9): a splat far off
@@ -41,17 +50,17 @@ struct alignas(64) Splat {
 static_assert(sizeof(Splat) == 64);
 
 // A tile's picture, planar (loaded from the picture before its splats, stored after), and its
-// sheet buffer: the current sheet's summed optical depth and depth-weighted colour. Row-major
-// with rows kTile long.
+// sheet buffer: the current sheet's summed optical depth and depth-weighted colour. Row-major,
+// kTile rows of kStride (tile_index).
 struct TileBuffers {
-    static constexpr int kArea = kTile * kTile;
-    float r[kArea], g[kArea], b[kArea];
+    static constexpr int kArea = kStride * kTile;
+    float r[kArea] = {}, g[kArea] = {}, b[kArea] = {};
     float tau[kArea] = {}, tau_r[kArea] = {}, tau_g[kArea] = {}, tau_b[kArea] = {};
     int rows_from = kTile, rows_to = 0;  // the rows the current sheet touched: [from, to)
 
     void touch(int local) {
-        rows_from = std::min(rows_from, local / kTile);
-        rows_to = std::max(rows_to, local / kTile + 1);
+        rows_from = std::min(rows_from, local / kStride);
+        rows_to = std::max(rows_to, local / kStride + 1);
     }
 };
 
@@ -103,16 +112,18 @@ std::size_t raster_stamped(const Splat& s, const SplatStamps& stamps, const Tile
                                  std::min(width - 1, t.yb - p.y0),
                                  t.xa - p.x0,
                                  t.xb - p.x0 + 1,
+                                 t.x0 - kApron - p.x0,
+                                 t.x0 + kTile + kApron - p.x0,
                                  p.span_from,
                                  p.span_to,
-                                 (p.y0 - t.y0) * kTile + (p.x0 - t.x0),
-                                 kTile};
+                                 tile_index(p.x0 - t.x0, p.y0 - t.y0),
+                                 kStride};
     if (block.v_from > block.v_to) return 0;
     TileBuffers& buffers = *t.buffers;
     if constexpr (!kOpaque) {
         if constexpr (kSheets) {
-            buffers.touch(block.origin + block.v_from * kTile - (p.x0 - t.x0));
-            buffers.touch(block.origin + block.v_to * kTile - (p.x0 - t.x0));
+            buffers.touch(tile_index(0, p.y0 + block.v_from - t.y0));
+            buffers.touch(tile_index(0, p.y0 + block.v_to - t.y0));
             return static_cast<std::size_t>(splat_rows::add_stamp_block_to_sheet(
                 {buffers.tau, buffers.tau_r, buffers.tau_g, buffers.tau_b}, block, colour));
         } else {
@@ -139,7 +150,7 @@ std::size_t raster_stamped(const Splat& s, const SplatStamps& stamps, const Tile
         for (int i = 0; i < n; ++i) {
             if (!(s.depth < depth[i])) tau[i] = 0.0f;
         }
-        composite_row<kSheets>(buffers, (y - t.y0) * kTile + (x - t.x0), tau, n, colour);
+        composite_row<kSheets>(buffers, tile_index(x - t.x0, y - t.y0), tau, n, colour);
         count += static_cast<std::size_t>(n);
     }
     return count;
@@ -176,7 +187,7 @@ std::size_t raster_orthographic(const Splat& s, double per_unit, const SplatFoot
                 if (!(s.depth < t.opaque_depth[row + static_cast<std::size_t>(x)])) f = 0.0f;
             }
         }
-        composite_row<kSheets>(*t.buffers, (y - t.y0) * kTile + (from - t.x0), tau, to - from + 1,
+        composite_row<kSheets>(*t.buffers, tile_index(from - t.x0, y - t.y0), tau, to - from + 1,
                                colour);
         count += static_cast<std::size_t>(to - from + 1);
     }
@@ -192,32 +203,15 @@ std::size_t raster_splat(const Splat& s, const TileTarget& t, const SplatStamps*
                   : raster_orthographic<kSheets, kOpaque>(s, per_unit, footprint, t);
 }
 
-// The indices of `depth` by decreasing depth, ties by increasing index (a stable order): two
-// halves sorted concurrently, then merged.
-std::vector<std::uint32_t> order_back_to_front(const std::vector<double>& depth) {
-    struct Entry {
-        double depth;
-        std::uint32_t index;
-    };
-    std::vector<Entry> entries(depth.size());
-    for (std::size_t i = 0; i < depth.size(); ++i) {
-        entries[i] = {depth[i], static_cast<std::uint32_t>(i)};
-    }
-    auto before = [](const Entry& a, const Entry& b) {
-        return a.depth != b.depth ? a.depth > b.depth : a.index < b.index;
-    };
-    const auto middle = entries.begin() + static_cast<std::ptrdiff_t>(entries.size() / 2);
-    parallel_for(0, 2, 1, [&](std::size_t half) {
-        if (half == 0) {
-            std::sort(entries.begin(), middle, before);
-        } else {
-            std::sort(middle, entries.end(), before);
-        }
-    });
-    std::inplace_merge(entries.begin(), middle, entries.end(), before);
-    std::vector<std::uint32_t> order(entries.size());
-    for (std::size_t i = 0; i < entries.size(); ++i) order[i] = entries[i].index;
-    return order;
+// A splat to draw and its depth: a tile's per-splat order.
+struct DepthEntry {
+    double depth;
+    std::uint32_t index;
+};
+
+// Back to front: decreasing depth, ties by increasing index (the points' order).
+bool further_back(const DepthEntry& a, const DepthEntry& b) {
+    return a.depth != b.depth ? a.depth > b.depth : a.index < b.index;
 }
 
 // The indices of `sheet` (each >= 0) grouped by sheet, the sheets in the order `further`
@@ -357,7 +351,9 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
     // with a non-zero extinction in view.
     constexpr std::size_t kBlock = 16384;
     const std::size_t n = in.points.size();
-    std::vector<Splat> splats(n);
+    // Uninitialised (default-initialised): only the drawn points' are written and read, and
+    // the pages are first touched by the threads that fill them.
+    const std::unique_ptr<Splat[]> splats(new Splat[n]);
     std::vector<std::vector<std::uint32_t>> drawn_blocks((n + kBlock - 1) / kBlock);
     parallel_for(0, drawn_blocks.size(), 1, [&](std::size_t block) {
         for (std::size_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
@@ -402,15 +398,11 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
             return ka != kb ? ka > kb : a > b;
         };
         order = order_by_sheet(sheet, further, &sheet_count);
-    } else {
-        std::vector<double> depth(drawn.size());
-        for (std::size_t k = 0; k < drawn.size(); ++k) depth[k] = splats[drawn[k]].depth;
-        order = order_back_to_front(depth);
     }
-    // The points drawn, back to front; with the sheet buffer, each splat's sheet as its place
-    // among the sheets.
-    std::vector<std::uint32_t> sequence(drawn.size());
-    for (std::size_t k = 0; k < drawn.size(); ++k) sequence[k] = drawn[order[k]];
+    // The points drawn: with the sheet buffer back to front, each splat's sheet as its place
+    // among the sheets; per splat, in the points' order (each tile sorts its own by depth).
+    std::vector<std::uint32_t> sequence = drawn;
+    for (std::size_t k = 0; sheets && k < drawn.size(); ++k) sequence[k] = drawn[order[k]];
     for (std::size_t k = 1; sheets && k < sequence.size(); ++k) {
         splats[sequence[k]].sheet =
             splats[sequence[k - 1]].sheet + (sheet[order[k]] != sheet[order[k - 1]] ? 1 : 0);
@@ -422,7 +414,7 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
     struct TileSpan {
         int x0, y0, x1, y1;
     };
-    std::vector<TileSpan> tile_span(n);
+    const std::unique_ptr<TileSpan[]> tile_span(new TileSpan[n]);
     for (std::uint32_t i : drawn) {
         const Splat& s = splats[i];
         tile_span[i] = {s.x0 / kTile, s.y0 / kTile, s.x1 / kTile, s.y1 / kTile};
@@ -476,7 +468,7 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
         };
         for (int y = y0; y <= y1; ++y) {
             for (int x = x0; x <= x1; ++x) {
-                const int local = (y - y0) * kTile + (x - x0);
+                const int local = tile_index(x - x0, y - y0);
                 const Vec3f& p = pixel(x, y);
                 buffers.r[local] = p.r, buffers.g[local] = p.g, buffers.b[local] = p.b;
             }
@@ -486,7 +478,7 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
         bool open = false;
         // The sheet composited over the tile: alpha = 1 - e^-tau, colour sum(c tau) / tau alpha.
         auto flush = [&] {
-            const int from = buffers.rows_from * kTile, to = buffers.rows_to * kTile;
+            const int from = buffers.rows_from * kStride, to = buffers.rows_to * kStride;
             if (from < to) {
                 splat_rows::composite_sheet(color_row(buffers, from),
                                             {buffers.tau + from, buffers.tau_r + from,
@@ -495,15 +487,22 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
             }
             buffers.rows_from = kTile, buffers.rows_to = 0;
         };
-        const std::size_t bin_end = bin_start[tile + 1];
-        for (std::size_t k = bin_start[tile]; k < bin_end; ++k) {
-            // The tile's splats lie scattered through the array: fetched a few ahead.
-            if (k + kPrefetch < bin_end) {
-                const char* ahead = reinterpret_cast<const char*>(&splats[binned[k + kPrefetch]]);
-                __builtin_prefetch(ahead);
-                __builtin_prefetch(ahead + sizeof(Splat) - 1);
+        // The tile's splats in order: per splat, sorted here by depth (their data now cached).
+        const std::span<std::uint32_t> bin(binned.data() + bin_start[tile],
+                                           bin_start[tile + 1] - bin_start[tile]);
+        if (!sheets) {
+            std::vector<DepthEntry> entries(bin.size());
+            for (std::size_t k = 0; k < bin.size(); ++k) {
+                if (k + kPrefetch < bin.size()) __builtin_prefetch(&splats[bin[k + kPrefetch]]);
+                entries[k] = {splats[bin[k]].depth, bin[k]};
             }
-            const std::uint32_t i = binned[k];
+            std::sort(entries.begin(), entries.end(), further_back);
+            for (std::size_t k = 0; k < bin.size(); ++k) bin[k] = entries[k].index;
+        }
+        for (std::size_t k = 0; k < bin.size(); ++k) {
+            // The tile's splats lie scattered through the array: fetched a few ahead.
+            if (k + kPrefetch < bin.size()) __builtin_prefetch(&splats[bin[k + kPrefetch]]);
+            const std::uint32_t i = bin[k];
             const Splat& s = splats[i];
             if (sheets) {
                 if (open && s.sheet != current) flush();
@@ -521,8 +520,8 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
             const Vec3& center = in.points[s.point];
             for (int y = ya; y <= yb; ++y) {
                 for (int x = xa; x <= xb; ++x) {
-                    const int local = (y - y0) * kTile + (x - x0);
-                    const Ray& ray = rays[local];
+                    const int local = tile_index(x - x0, y - y0);
+                    const Ray& ray = rays[(y - y0) * kTile + (x - x0)];
                     const Vec3 v = center - ray.origin;
                     const double t = glm::dot(v, ray.direction);  // the centre's ray parameter
                     const double rho_sq = glm::dot(v, v) - t * t;
@@ -542,7 +541,7 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
         if (open) flush();
         for (int y = y0; y <= y1; ++y) {
             for (int x = x0; x <= x1; ++x) {
-                const int local = (y - y0) * kTile + (x - x0);
+                const int local = tile_index(x - x0, y - y0);
                 pixel(x, y) = Vec3f(buffers.r[local], buffers.g[local], buffers.b[local]);
             }
         }

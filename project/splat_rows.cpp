@@ -9,12 +9,15 @@
 #else
 #define TR_ROW_CLONES
 #endif
+// The loops the clones call are inlined into each (a call would run the baseline's code).
+#define TR_INLINE [[gnu::always_inline]] inline
+#define TR_LAMBDA_INLINE __attribute__((always_inline))
 
 namespace tr::splat_rows {
 namespace {
 
 // e^x for -kSmallDepth <= x <= 0: 1 + x + x^2/2 + x^3/6 + x^4/24 (exactly 1 at 0).
-inline float exp_small(float x) {
+TR_INLINE float exp_small(float x) {
     return 1.0f + x * (1.0f + x * (0.5f + x * (1.0f / 6.0f + x * (1.0f / 24.0f))));
 }
 
@@ -48,10 +51,10 @@ namespace {
 
 // The loops with every pointer a restrict parameter (GCC vectorises without alias checks).
 template <bool kSmall>
-inline void composite_stamps_loop(float* __restrict r, float* __restrict g, float* __restrict b,
-                                  const float* __restrict sa, const float* __restrict sb,
-                                  const float* __restrict sc, const float* __restrict sd,
-                                  const float* w, int n, const Vec3f& c) {
+TR_INLINE void composite_stamps_loop(float* __restrict r, float* __restrict g, float* __restrict b,
+                                     const float* __restrict sa, const float* __restrict sb,
+                                     const float* __restrict sc, const float* __restrict sd,
+                                     const float* w, int n, const Vec3f& c) {
     const float w0 = w[0], w1 = w[1], w2 = w[2], w3 = w[3];
     const float cr = c.r, cg = c.g, cb = c.b;
     for (int i = 0; i < n; ++i) {
@@ -63,10 +66,10 @@ inline void composite_stamps_loop(float* __restrict r, float* __restrict g, floa
     }
 }
 
-inline void add_stamps_loop(float* __restrict t, float* __restrict r, float* __restrict g,
-                            float* __restrict b, const float* __restrict sa,
-                            const float* __restrict sb, const float* __restrict sc,
-                            const float* __restrict sd, const float* w, int n, const Vec3f& c) {
+TR_INLINE void add_stamps_loop(float* __restrict t, float* __restrict r, float* __restrict g,
+                               float* __restrict b, const float* __restrict sa,
+                               const float* __restrict sb, const float* __restrict sc,
+                               const float* __restrict sd, const float* w, int n, const Vec3f& c) {
     const float w0 = w[0], w1 = w[1], w2 = w[2], w3 = w[3];
     const float cr = c.r, cg = c.g, cb = c.b;
     for (int i = 0; i < n; ++i) {
@@ -78,9 +81,9 @@ inline void add_stamps_loop(float* __restrict t, float* __restrict r, float* __r
     }
 }
 
-inline void composite_sheet_loop(float* __restrict r, float* __restrict g, float* __restrict b,
-                                 float* __restrict t, float* __restrict tr, float* __restrict tg,
-                                 float* __restrict tb, int n) {
+TR_INLINE void composite_sheet_loop(float* __restrict r, float* __restrict g, float* __restrict b,
+                                    float* __restrict t, float* __restrict tr, float* __restrict tg,
+                                    float* __restrict tb, int n) {
     for (int i = 0; i < n; ++i) {
         const float e = exp_nonpositive(-t[i]);
         const float scale = t[i] > 0.0f ? (1.0f - e) / t[i] : 0.0f;
@@ -98,11 +101,11 @@ namespace {
 // For each row of the block: the first pixel's offset from the tile's origin (ahead of the
 // block's origin), the offset into the stamps and the pixel count.
 template <class Row>
-inline int for_each_block_row(const StampBlock& block, Row&& row) {
+TR_INLINE int for_each_block_row(const StampBlock& block, Row&& row) {
     // Rows are widened to a multiple of 8 pixels where the stamps and the clip allow (the
     // samples outside the span are 0: those pixels stay as they are), so that the vector loops
     // run whole.
-    const int lo = std::max(0, block.u_lo), hi = std::min(block.width, block.u_hi);
+    const int lo = std::max(0, block.pad_lo), hi = std::min(block.width, block.pad_hi);
     int drawn = 0;
     for (int v = block.v_from; v <= block.v_to; ++v) {
         int from = std::max<int>(block.span_from[v], block.u_lo);
@@ -123,7 +126,7 @@ TR_ROW_CLONES int composite_stamp_block(const ColorRow& tile, const StampBlock& 
                                         const Vec3f& c, bool small) {
     const auto& s = block.stamps.stamp;
     const float* w = block.stamps.weight;
-    return for_each_block_row(block, [&](int pixel, int sample, int n) {
+    return for_each_block_row(block, [&](int pixel, int sample, int n) TR_LAMBDA_INLINE {
         if (small) {
             composite_stamps_loop<true>(tile.r + pixel, tile.g + pixel, tile.b + pixel,
                                         s[0] + sample, s[1] + sample, s[2] + sample, s[3] + sample,
@@ -140,7 +143,7 @@ TR_ROW_CLONES int add_stamp_block_to_sheet(const SheetRow& tile, const StampBloc
                                            const Vec3f& c) {
     const auto& s = block.stamps.stamp;
     const float* w = block.stamps.weight;
-    return for_each_block_row(block, [&](int pixel, int sample, int n) {
+    return for_each_block_row(block, [&](int pixel, int sample, int n) TR_LAMBDA_INLINE {
         add_stamps_loop(tile.tau + pixel, tile.r + pixel, tile.g + pixel, tile.b + pixel,
                         s[0] + sample, s[1] + sample, s[2] + sample, s[3] + sample, w, n, c);
     });

@@ -51,25 +51,28 @@ void add_to_sheet(const SheetRow& sheet, const float* tau, int n, const Vec3f& c
 void composite_sheet(const ColorRow& row, const SheetRow& sheet, int n);
 
 // A whole splat drawn from stamps into a tile (row-major, rows `stride` long): rows v_from ...
-// v_to of the stamps (`width` samples a row), in each the columns within the row's span
-// [span_from[v], span_to[v]) and the clip [u_lo, u_hi); stamp column u of row v is the tile's
-// pixel origin + v stride + u (origin may be negative; every pixel drawn lies in the tile).
+// v_to of the stamps (`width` samples a row, a multiple of 8), in each the columns within the
+// row's span [span_from[v], span_to[v]) and the clip [u_lo, u_hi), widened to a multiple of 8
+// columns within the stamp and [pad_lo, pad_hi) (where the tile's buffers have room: the samples
+// outside the span are 0, the pixels unchanged); stamp column u of row v is the tile's pixel
+// origin + v stride + u (every pixel drawn lies in the tile's buffers).
 struct StampBlock {
     StampRows stamps;  // at row 0, column 0
     int width;
-    int v_from, v_to;  // inclusive
-    int u_lo, u_hi;    // [u_lo, u_hi)
+    int v_from, v_to;    // inclusive
+    int u_lo, u_hi;      // [u_lo, u_hi)
+    int pad_lo, pad_hi;  // [pad_lo, pad_hi), containing [u_lo - 7, u_hi + 7)
     const short* span_from;
     const short* span_to;
     int origin, stride;
 };
 
-// The splat composited over the tile's picture (small: as composite_stamps). Returns the
-// pixels drawn.
+// The splat composited over the tile's picture (small: every optical depth is at most
+// kSmallDepth: a cheaper exponential). Returns the pixels drawn (within the clip).
 int composite_stamp_block(const ColorRow& tile, const StampBlock& block, const Vec3f& c,
                           bool small);
 
-// The splat added to the tile's sheet buffer. Returns the pixels drawn.
+// The splat added to the tile's sheet buffer. Returns the pixels drawn (within the clip).
 int add_stamp_block_to_sheet(const SheetRow& tile, const StampBlock& block, const Vec3f& c);
 
 }  // namespace tr::splat_rows

@@ -8,8 +8,9 @@ namespace tr {
 namespace {
 
 // The stamp side for a support of `radius` pixels: columns reach - floor(radius) ... reach +
-// floor(radius) + 1 hold every pixel within the radius of a centre offset by [0, 1].
-int stamp_width(double radius) { return 2 * static_cast<int>(std::floor(radius)) + 4; }
+// floor(radius) + 1 hold every pixel within the radius of a centre offset by [0, 1]; rounded up
+// to a multiple of 8 (the row loops' whole vectors).
+int stamp_width(double radius) { return (2 * static_cast<int>(std::floor(radius)) + 4 + 7) & ~7; }
 
 }  // namespace
 

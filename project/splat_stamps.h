@@ -38,7 +38,7 @@ class SplatStamps {
     // Preconditions: pixels_per_unit > 0 and fits(footprint, pixels_per_unit) (checked).
     SplatStamps(const SplatFootprint& footprint, double pixels_per_unit);
 
-    int width() const { return width_; }
+    int width() const { return width_; }  // a multiple of 8
     int reach() const { return reach_; }
     int steps() const { return steps_; }
     float peak() const { return peak_; }  // the largest sample
