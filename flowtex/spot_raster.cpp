@@ -1,45 +1,18 @@
 #include <core/parallel.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <flowtex/detail/spot_random.h>
+#include <flowtex/detail/spot_rows.h>
 #include <flowtex/spot_raster.h>
+#include <numeric>
 
 namespace tr {
 namespace {
 
 constexpr int kBandRows = 16;
 constexpr double kCutQ = 9.0;  // 3 sigma
-constexpr float kCutQf = 9.0f;
-constexpr int kTableSize = 1024;
-
-struct Footprint {
-    SpotEllipse e;
-    float amplitude = 0;
-    int x0 = 0, x1 = -1, y0 = 0, y1 = -1;  // inclusive pixel bounds
-};
-
-// What the inner loop reads of a footprint, copied into each band it meets so that a band
-// reads its spots in sequence.
-struct BandSpot {
-    double cx, cy;      // centre, pixels
-    double qa, qb, qc;  // q(dx, dy) = qa dx^2 + 2 qb dx dy + qc dy^2
-    float depth;        // the centre's ray parameter (float: compared with the opaque depth)
-    float amplitude;
-    int x0, x1, y0, y1;
-};
-
-const std::array<float, kTableSize + 1>& gaussian_table() {
-    static const std::array<float, kTableSize + 1> table = [] {
-        std::array<float, kTableSize + 1> t{};
-        for (int k = 0; k <= kTableSize; ++k) {
-            t[k] = static_cast<float>(std::exp(-0.5 * kCutQ * k / kTableSize));
-        }
-        return t;
-    }();
-    return table;
-}
+constexpr int kApron = 8;      // a band's rows' spare pixels either side (whole vectors)
 
 int clamp_pixel(double v, int hi) {
     return static_cast<int>(std::clamp(std::floor(v), -1.0, static_cast<double>(hi)));
@@ -79,92 +52,94 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
     buffers.width = w;
     buffers.height = h;
     const std::size_t pixels = static_cast<std::size_t>(w) * h;
-    buffers.intensity.assign(pixels, 0.0f);
-    buffers.coverage.assign(pixels, 0.0f);
-    buffers.depth.assign(pixels, 0.0f);
+    // Every row is written below (a band's sums are copied in, an empty band's zeroed).
+    buffers.intensity.resize(pixels);
+    buffers.coverage.resize(pixels);
+    buffers.depth.resize(pixels);
     const std::size_t n = spots.size();
-    std::vector<Footprint> prints(n);
+    std::vector<detail::SpotPrint>& prints = buffers.prints;
+    prints.resize(n);
     const auto positions = spots.positions();
     const auto velocities = spots.velocities();
     const auto generations = spots.generations();
     parallel_for(0, n, 2048, [&](std::size_t i) {
-        Footprint& f = prints[i];
+        detail::SpotPrint& f = prints[i];
+        f.x0 = f.y0 = 0, f.x1 = f.y1 = -1;  // none
         const auto e = spot_ellipse(camera, positions[i], velocities[i], options);
         if (!e) return;
-        f.e = *e;
         // The bounding box of the 3-sigma ellipse.
         const double r = std::sqrt(kCutQ);
-        const double dx = e->direction.x, dy = e->direction.y;
-        const double ex = r * std::hypot(e->sigma_long * dx, e->sigma_short * dy);
-        const double ey = r * std::hypot(e->sigma_long * dy, e->sigma_short * dx);
+        const double ux = e->direction.x, uy = e->direction.y;
+        const double ex = r * std::hypot(e->sigma_long * ux, e->sigma_short * uy);
+        const double ey = r * std::hypot(e->sigma_long * uy, e->sigma_short * ux);
+        const double il = 1.0 / (e->sigma_long * e->sigma_long);
+        const double is = 1.0 / (e->sigma_short * e->sigma_short);
+        detail::SpotRandom random(0xa11ce, i, generations[i]);
+        const double a = 0.5 + 0.5 * random.uniform();
+        f.cx = e->centre.x, f.cy = e->centre.y;
+        f.qa = ux * ux * il + uy * uy * is;
+        f.qb = ux * uy * (il - is);
+        f.qc = uy * uy * il + ux * ux * is;
+        f.depth = static_cast<float>(e->depth);
+        f.amplitude = static_cast<float>(random.uniform() < 0.5 ? -a : a);
         f.x0 = std::max(clamp_pixel(e->centre.x - ex, w), 0);
         f.x1 = std::min(clamp_pixel(e->centre.x + ex, w), w - 1);
         f.y0 = std::max(clamp_pixel(e->centre.y - ey, h), 0);
         f.y1 = std::min(clamp_pixel(e->centre.y + ey, h), h - 1);
-        detail::SpotRandom random(0xa11ce, i, generations[i]);
-        const double a = 0.5 + 0.5 * random.uniform();
-        f.amplitude = static_cast<float>(random.uniform() < 0.5 ? -a : a);
     });
+    // Each band's spots, in spot order: band b's are band_spots[band_start[b], band_start[b + 1]).
     const int num_bands = (h + kBandRows - 1) / kBandRows;
-    std::vector<std::vector<BandSpot>> bins(num_bands);
-    for (std::size_t i = 0; i < n; ++i) {
-        const Footprint& f = prints[i];
-        if (f.x1 < f.x0 || f.y1 < f.y0) continue;
-        const double il = 1.0 / (f.e.sigma_long * f.e.sigma_long);
-        const double is = 1.0 / (f.e.sigma_short * f.e.sigma_short);
-        const double ux = f.e.direction.x, uy = f.e.direction.y;
-        const BandSpot spot{f.e.centre.x,
-                            f.e.centre.y,
-                            ux * ux * il + uy * uy * is,
-                            ux * uy * (il - is),
-                            uy * uy * il + ux * ux * is,
-                            static_cast<float>(f.e.depth),
-                            f.amplitude,
-                            f.x0,
-                            f.x1,
-                            f.y0,
-                            f.y1};
-        for (int b = f.y0 / kBandRows; b <= f.y1 / kBandRows; ++b) bins[b].push_back(spot);
+    std::vector<std::size_t>& band_start = buffers.band_start;
+    band_start.assign(static_cast<std::size_t>(num_bands) + 1, 0);
+    auto drawn = [&](const detail::SpotPrint& f) { return f.x0 <= f.x1 && f.y0 <= f.y1; };
+    for (const detail::SpotPrint& f : prints) {
+        if (!drawn(f)) continue;
+        for (int b = f.y0 / kBandRows; b <= f.y1 / kBandRows; ++b) ++band_start[b + 1];
     }
-    const auto& table = gaussian_table();
-    const float to_table = static_cast<float>(kTableSize / kCutQ);
+    std::partial_sum(band_start.begin(), band_start.end(), band_start.begin());
+    std::vector<std::uint32_t>& band_spots = buffers.band_spots;
+    band_spots.resize(band_start.back());
+    {
+        std::vector<std::size_t> next(band_start.begin(), band_start.end() - 1);
+        for (std::size_t i = 0; i < n; ++i) {
+            const detail::SpotPrint& f = prints[i];
+            if (!drawn(f)) continue;
+            for (int b = f.y0 / kBandRows; b <= f.y1 / kBandRows; ++b) {
+                band_spots[next[b]++] = static_cast<std::uint32_t>(i);
+            }
+        }
+    }
     const std::vector<double>* depth = options.opaque_depth;
-    parallel_for(0, bins.size(), 1, [&](std::size_t band) {
+    // A band's sums in rows of `stride` floats with an apron of kApron pixels either side, so
+    // that rows of spots run in whole vectors of 8 (the weights outside a spot's ellipse are 0);
+    // copied into the picture's rows after the band's spots. With opaque geometry the rows are
+    // not widened (the depths exist inside the picture only).
+    const int stride = w + 2 * kApron;
+    parallel_for(0, static_cast<std::size_t>(num_bands), 1, [&](std::size_t band) {
         const int row0 = static_cast<int>(band) * kBandRows;
         const int row1 = std::min(row0 + kBandRows, h) - 1;
-        for (const BandSpot& f : bins[band]) {
-            const double qa = f.qa, qb = f.qb, qc = f.qc;
-            // The span of a row: q(dx) = 9 at dx = (-qb dy -+ sqrt(9 qa - det dy^2)) / qa, det =
-            // qa qc - qb^2. Truncation toward zero keeps the span conservative (the q test below
-            // is exact), and is cheaper than floor and ceil.
-            const double det = qa * qc - qb * qb, inv_qa = 1.0 / qa;
-            for (int y = std::max(f.y0, row0); y <= std::min(f.y1, row1); ++y) {
-                const double dy = y + 0.5 - f.cy;
-                const double disc = kCutQ * qa - det * dy * dy;
-                if (!(disc > 0)) continue;
-                const double half = std::sqrt(disc) * inv_qa;
-                const double mid = f.cx - qb * dy * inv_qa - 0.5;
-                const int xa = std::max(f.x0, static_cast<int>(mid - half));
-                const int xb = std::min(f.x1, static_cast<int>(mid + half) + 1);
-                const double dx0 = xa + 0.5 - f.cx;
-                float q = static_cast<float>(qa * dx0 * dx0 + 2 * qb * dx0 * dy + qc * dy * dy);
-                float dq = static_cast<float>(qa * (2 * dx0 + 1) + 2 * qb * dy);
-                const float ddq = static_cast<float>(2 * qa);
-                const std::size_t row = static_cast<std::size_t>(y) * w;
-                float* intensity = buffers.intensity.data() + row;
-                float* coverage = buffers.coverage.data() + row;
-                float* depth_sum = buffers.depth.data() + row;
-                const double* hidden = depth ? depth->data() + row : nullptr;
-                for (int x = xa; x <= xb; ++x, q += dq, dq += ddq) {
-                    if (!(q < kCutQf)) continue;
-                    if (hidden && !(f.depth < hidden[x])) continue;
-                    const float weight =
-                        table[static_cast<int>(std::max(q, 0.0f) * to_table + 0.5f)];
-                    intensity[x] += f.amplitude * weight;
-                    coverage[x] += weight;
-                    depth_sum[x] += f.depth * weight;
-                }
-            }
+        if (band_start[band] == band_start[band + 1]) {
+            const std::size_t from = static_cast<std::size_t>(row0) * w;
+            const std::size_t count = static_cast<std::size_t>(row1 - row0 + 1) * w;
+            std::fill_n(buffers.intensity.data() + from, count, 0.0f);
+            std::fill_n(buffers.coverage.data() + from, count, 0.0f);
+            std::fill_n(buffers.depth.data() + from, count, 0.0f);
+            return;
+        }
+        std::vector<float> sums(3 * static_cast<std::size_t>(stride) * kBandRows, 0.0f);
+        float* const band_intensity = sums.data();
+        float* const band_coverage = band_intensity + static_cast<std::size_t>(stride) * kBandRows;
+        float* const band_depth = band_coverage + static_cast<std::size_t>(stride) * kBandRows;
+        spot_rows::add_spots({band_intensity, band_coverage, band_depth, stride, kApron, w, row0,
+                              row1, depth ? depth->data() : nullptr},
+                             prints.data(), band_spots.data() + band_start[band],
+                             band_start[band + 1] - band_start[band]);
+        for (int y = row0; y <= row1; ++y) {
+            const std::size_t from = static_cast<std::size_t>(y - row0) * stride + kApron;
+            const std::size_t to = static_cast<std::size_t>(y) * w;
+            std::copy_n(band_intensity + from, w, buffers.intensity.data() + to);
+            std::copy_n(band_coverage + from, w, buffers.coverage.data() + to);
+            std::copy_n(band_depth + from, w, buffers.depth.data() + to);
         }
     });
 }

@@ -5,6 +5,8 @@
 #include <core/camera.h>
 #include <core/image.h>
 
+#include <cstdint>
+#include <flowtex/detail/spot_rows.h>
 #include <flowtex/spot_noise.h>
 #include <optional>
 #include <vector>
@@ -38,12 +40,17 @@ struct SpotRasterOptions {
     const std::vector<double>* opaque_depth = nullptr;
 };
 
-// The sums per pixel (row-major from the top).
+// The sums per pixel (row-major from the top), and the raster's working memory, kept between
+// frames.
 struct SpotBuffers {
     int width = 0, height = 0;
     std::vector<float> intensity;  // I
     std::vector<float> coverage;   // W
     std::vector<float> depth;      // sum w_i d_i, d_i spot i's centre's ray parameter
+
+    std::vector<detail::SpotPrint> prints;  // per spot
+    std::vector<std::size_t> band_start;    // per band of rows: its first in band_spots
+    std::vector<std::uint32_t> band_spots;  // the spots meeting each band, in spot order
 };
 
 // A pixel's spot colour (before compositing) and opacity from its sums I and W (W > 0), as

@@ -1,29 +1,20 @@
 #include <core/fast_exp.h>
+#include <core/vector_clones.h>
 #include <project/splat_rows.h>
 
 #include <algorithm>
-
-// Built for AVX2 too where the target has ifunc support (x86-64 GNU/Linux).
-#if defined(__x86_64__) && defined(__linux__) && !defined(__SANITIZE_ADDRESS__)
-#define TR_ROW_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define TR_ROW_CLONES
-#endif
-// The loops the clones call are inlined into each (a call would run the baseline's code).
-#define TR_INLINE [[gnu::always_inline]] inline
-#define TR_LAMBDA_INLINE __attribute__((always_inline))
 
 namespace tr::splat_rows {
 namespace {
 
 // e^x for -kSmallDepth <= x <= 0: 1 + x + x^2/2 + x^3/6 + x^4/24 (exactly 1 at 0).
-TR_INLINE float exp_small(float x) {
+TR_FORCE_INLINE float exp_small(float x) {
     return 1.0f + x * (1.0f + x * (0.5f + x * (1.0f / 6.0f + x * (1.0f / 24.0f))));
 }
 
 }  // namespace
 
-TR_ROW_CLONES void blend_stamps(float* __restrict out, const StampRows& stamps, int n) {
+TR_VECTOR_CLONES void blend_stamps(float* __restrict out, const StampRows& stamps, int n) {
     const float* __restrict a = stamps.stamp[0];
     const float* __restrict b = stamps.stamp[1];
     const float* __restrict c = stamps.stamp[2];
@@ -33,8 +24,8 @@ TR_ROW_CLONES void blend_stamps(float* __restrict out, const StampRows& stamps, 
     for (int i = 0; i < n; ++i) out[i] = w0 * a[i] + w1 * b[i] + w2 * c[i] + w3 * d[i];
 }
 
-TR_ROW_CLONES void composite(const ColorRow& row, const float* __restrict tau, int n,
-                             const Vec3f& c) {
+TR_VECTOR_CLONES void composite(const ColorRow& row, const float* __restrict tau, int n,
+                                const Vec3f& c) {
     float* __restrict r = row.r;
     float* __restrict g = row.g;
     float* __restrict b = row.b;
@@ -51,10 +42,11 @@ namespace {
 
 // The loops with every pointer a restrict parameter (GCC vectorises without alias checks).
 template <bool kSmall>
-TR_INLINE void composite_stamps_loop(float* __restrict r, float* __restrict g, float* __restrict b,
-                                     const float* __restrict sa, const float* __restrict sb,
-                                     const float* __restrict sc, const float* __restrict sd,
-                                     const float* w, int n, const Vec3f& c) {
+TR_FORCE_INLINE void composite_stamps_loop(float* __restrict r, float* __restrict g,
+                                           float* __restrict b, const float* __restrict sa,
+                                           const float* __restrict sb, const float* __restrict sc,
+                                           const float* __restrict sd, const float* w, int n,
+                                           const Vec3f& c) {
     const float w0 = w[0], w1 = w[1], w2 = w[2], w3 = w[3];
     const float cr = c.r, cg = c.g, cb = c.b;
     for (int i = 0; i < n; ++i) {
@@ -66,10 +58,11 @@ TR_INLINE void composite_stamps_loop(float* __restrict r, float* __restrict g, f
     }
 }
 
-TR_INLINE void add_stamps_loop(float* __restrict t, float* __restrict r, float* __restrict g,
-                               float* __restrict b, const float* __restrict sa,
-                               const float* __restrict sb, const float* __restrict sc,
-                               const float* __restrict sd, const float* w, int n, const Vec3f& c) {
+TR_FORCE_INLINE void add_stamps_loop(float* __restrict t, float* __restrict r, float* __restrict g,
+                                     float* __restrict b, const float* __restrict sa,
+                                     const float* __restrict sb, const float* __restrict sc,
+                                     const float* __restrict sd, const float* w, int n,
+                                     const Vec3f& c) {
     const float w0 = w[0], w1 = w[1], w2 = w[2], w3 = w[3];
     const float cr = c.r, cg = c.g, cb = c.b;
     for (int i = 0; i < n; ++i) {
@@ -81,9 +74,10 @@ TR_INLINE void add_stamps_loop(float* __restrict t, float* __restrict r, float* 
     }
 }
 
-TR_INLINE void composite_sheet_loop(float* __restrict r, float* __restrict g, float* __restrict b,
-                                    float* __restrict t, float* __restrict tr, float* __restrict tg,
-                                    float* __restrict tb, int n) {
+TR_FORCE_INLINE void composite_sheet_loop(float* __restrict r, float* __restrict g,
+                                          float* __restrict b, float* __restrict t,
+                                          float* __restrict tr, float* __restrict tg,
+                                          float* __restrict tb, int n) {
     for (int i = 0; i < n; ++i) {
         const float e = exp_nonpositive(-t[i]);
         const float scale = t[i] > 0.0f ? (1.0f - e) / t[i] : 0.0f;
@@ -101,7 +95,7 @@ namespace {
 // For each row of the block: the first pixel's offset from the tile's origin (ahead of the
 // block's origin), the offset into the stamps and the pixel count.
 template <class Row>
-TR_INLINE int for_each_block_row(const StampBlock& block, Row&& row) {
+TR_FORCE_INLINE int for_each_block_row(const StampBlock& block, Row&& row) {
     // Rows are widened to a multiple of 8 pixels where the stamps and the clip allow (the
     // samples outside the span are 0: those pixels stay as they are), so that the vector loops
     // run whole.
@@ -122,11 +116,11 @@ TR_INLINE int for_each_block_row(const StampBlock& block, Row&& row) {
 
 }  // namespace
 
-TR_ROW_CLONES int composite_stamp_block(const ColorRow& tile, const StampBlock& block,
-                                        const Vec3f& c, bool small) {
+TR_VECTOR_CLONES int composite_stamp_block(const ColorRow& tile, const StampBlock& block,
+                                           const Vec3f& c, bool small) {
     const auto& s = block.stamps.stamp;
     const float* w = block.stamps.weight;
-    return for_each_block_row(block, [&](int pixel, int sample, int n) TR_LAMBDA_INLINE {
+    return for_each_block_row(block, [&](int pixel, int sample, int n) TR_FORCE_INLINE_LAMBDA {
         if (small) {
             composite_stamps_loop<true>(tile.r + pixel, tile.g + pixel, tile.b + pixel,
                                         s[0] + sample, s[1] + sample, s[2] + sample, s[3] + sample,
@@ -139,18 +133,18 @@ TR_ROW_CLONES int composite_stamp_block(const ColorRow& tile, const StampBlock& 
     });
 }
 
-TR_ROW_CLONES int add_stamp_block_to_sheet(const SheetRow& tile, const StampBlock& block,
-                                           const Vec3f& c) {
+TR_VECTOR_CLONES int add_stamp_block_to_sheet(const SheetRow& tile, const StampBlock& block,
+                                              const Vec3f& c) {
     const auto& s = block.stamps.stamp;
     const float* w = block.stamps.weight;
-    return for_each_block_row(block, [&](int pixel, int sample, int n) TR_LAMBDA_INLINE {
+    return for_each_block_row(block, [&](int pixel, int sample, int n) TR_FORCE_INLINE_LAMBDA {
         add_stamps_loop(tile.tau + pixel, tile.r + pixel, tile.g + pixel, tile.b + pixel,
                         s[0] + sample, s[1] + sample, s[2] + sample, s[3] + sample, w, n, c);
     });
 }
 
-TR_ROW_CLONES void add_to_sheet(const SheetRow& sheet, const float* __restrict tau, int n,
-                                const Vec3f& c) {
+TR_VECTOR_CLONES void add_to_sheet(const SheetRow& sheet, const float* __restrict tau, int n,
+                                   const Vec3f& c) {
     float* __restrict t = sheet.tau;
     float* __restrict r = sheet.r;
     float* __restrict g = sheet.g;
@@ -164,7 +158,7 @@ TR_ROW_CLONES void add_to_sheet(const SheetRow& sheet, const float* __restrict t
     }
 }
 
-TR_ROW_CLONES void composite_sheet(const ColorRow& row, const SheetRow& sheet, int n) {
+TR_VECTOR_CLONES void composite_sheet(const ColorRow& row, const SheetRow& sheet, int n) {
     composite_sheet_loop(row.r, row.g, row.b, sheet.tau, sheet.r, sheet.g, sheet.b, n);
 }
 
