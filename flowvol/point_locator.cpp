@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 namespace tr {
 namespace {
@@ -51,11 +52,16 @@ PointLocator::PointLocator(const TetMesh& mesh, const FaceAdjacency& adjacency)
 
 std::array<double, 4> PointLocator::barycentric(CellId t, const Vec3& p) const {
     const Tet& v = mesh_.tet(t);
-    const Vec3 &a = mesh_.point(v[0]), &b = mesh_.point(v[1]), &c = mesh_.point(v[2]),
-               &d = mesh_.point(v[3]);
-    const double volume = orient3d(a, b, c, d);
-    return {orient3d(p, b, c, d) / volume, orient3d(a, p, c, d) / volume,
-            orient3d(a, b, p, d) / volume, orient3d(a, b, c, p) / volume};
+    const Vec3& d = mesh_.point(v[3]);
+    // Edges from d: w_k is the volume of the tet with p in place of vertex k over the tet's,
+    // orient3d(a, b, c, d) = (a - d) . ((b - d) x (c - d)); the three cross products shared.
+    const Vec3 a = mesh_.point(v[0]) - d, b = mesh_.point(v[1]) - d, c = mesh_.point(v[2]) - d;
+    const Vec3 q = p - d;
+    const Vec3 bc = glm::cross(b, c), ca = glm::cross(c, a), ab = glm::cross(a, b);
+    const double volume = glm::dot(a, bc);
+    const double w0 = glm::dot(q, bc) / volume, w1 = glm::dot(q, ca) / volume;
+    const double w2 = glm::dot(q, ab) / volume;
+    return {w0, w1, w2, 1.0 - w0 - w1 - w2};
 }
 
 std::size_t PointLocator::grid_index(const Vec3& p) const {
@@ -104,12 +110,21 @@ std::optional<Location> PointLocator::locate(const Vec3& p, CellId hint) const {
 }
 
 Vec3 interpolate_vector(const TetMesh& mesh, const Field& field, const Location& location) {
-    Vec3 v(0.0);
     const Tet& tet = mesh.tet(location.tet);
-    for (int k = 0; k < 4; ++k) {
-        for (int c = 0; c < 3; ++c) v[c] += location.barycentric[k] * field.get(tet[k], c);
-    }
-    return v;
+    const auto n = static_cast<std::size_t>(field.num_components);
+    // The values' type resolved once, not per component.
+    return std::visit(
+        [&](const auto& values) {
+            Vec3 v(0.0);
+            for (int k = 0; k < 4; ++k) {
+                const auto* at = values.data() + static_cast<std::size_t>(tet[k]) * n;
+                for (int c = 0; c < 3; ++c) {
+                    v[c] += location.barycentric[k] * static_cast<double>(at[c]);
+                }
+            }
+            return v;
+        },
+        field.values);
 }
 
 }  // namespace tr
