@@ -70,8 +70,9 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
         // The bounding box of the 3-sigma ellipse.
         const double r = std::sqrt(kCutQ);
         const double ux = e->direction.x, uy = e->direction.y;
-        const double ex = r * std::hypot(e->sigma_long * ux, e->sigma_short * uy);
-        const double ey = r * std::hypot(e->sigma_long * uy, e->sigma_short * ux);
+        const double lx = e->sigma_long * ux, ly = e->sigma_long * uy;
+        const double sx = e->sigma_short * ux, sy = e->sigma_short * uy;
+        const double ex = r * std::sqrt(lx * lx + sy * sy), ey = r * std::sqrt(ly * ly + sx * sx);
         const double il = 1.0 / (e->sigma_long * e->sigma_long);
         const double is = 1.0 / (e->sigma_short * e->sigma_short);
         detail::SpotRandom random(0xa11ce, i, generations[i]);
@@ -146,10 +147,10 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
 
 void spot_color(const SpotRasterOptions& options, float intensity, float coverage, Vec3f& color,
                 float& alpha) {
-    const double cover = coverage;
-    const double g = 0.5 + 0.5 * std::tanh(options.contrast * intensity / std::sqrt(1.0 + cover));
-    alpha = static_cast<float>(-std::expm1(-options.opacity * cover));
-    color = options.dark + static_cast<float>(g) * (options.light - options.dark);
+    float grey = 0;
+    spot_rows::spot_shade(static_cast<float>(options.contrast), static_cast<float>(options.opacity),
+                          intensity, coverage, grey, alpha);
+    color = options.dark + grey * (options.light - options.dark);
 }
 
 void render_spots(const CameraFrame& camera, const SpotNoise& spots,
@@ -158,19 +159,21 @@ void render_spots(const CameraFrame& camera, const SpotNoise& spots,
     const int w = camera.width(), h = camera.height();
     if (image.width != w || image.height != h) image = Image(w, h);
     const Image* opaque = options.opaque_color;
+    const Vec3f dark = options.dark, range = options.light - options.dark;
     parallel_for(0, static_cast<std::size_t>(h), 8, [&](std::size_t y) {
+        // The row's greys and opacities (vectorised: spot_color's), then the colours over the
+        // background (the sums of uncovered pixels are 0: opacity 0).
+        std::vector<float> grey(static_cast<std::size_t>(w)), alpha(static_cast<std::size_t>(w));
+        const std::size_t row = y * w;
+        spot_rows::shade_row(buffers.intensity.data() + row, buffers.coverage.data() + row,
+                             grey.data(), alpha.data(), w, static_cast<float>(options.contrast),
+                             static_cast<float>(options.opacity));
         for (int x = 0; x < w; ++x) {
-            const std::size_t pixel = y * w + x;
+            const std::size_t pixel = row + x;
             const Vec3f base = opaque ? opaque->pixels[pixel] : options.background;
-            const double cover = buffers.coverage[pixel];
-            if (!(cover > 0)) {
-                image.pixels[pixel] = base;
-                continue;
-            }
-            Vec3f spot;
-            float alpha = 0;
-            spot_color(options, buffers.intensity[pixel], buffers.coverage[pixel], spot, alpha);
-            image.pixels[pixel] = alpha * spot + (1.0f - alpha) * base;
+            const float a = alpha[static_cast<std::size_t>(x)];
+            image.pixels[pixel] =
+                a * (dark + grey[static_cast<std::size_t>(x)] * range) + (1.0f - a) * base;
         }
     });
 }
