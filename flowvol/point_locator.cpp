@@ -14,6 +14,7 @@ constexpr int kMaxWalk = 4096;               // steps before the walk gives up o
 
 PointLocator::PointLocator(const TetMesh& mesh, const FaceAdjacency& adjacency)
     : mesh_(mesh), adjacency_(adjacency), bounds_(mesh.bounds()) {
+    pad_ = 1e-9 * bounds_.diagonal();
     const std::size_t n = std::max<std::size_t>(mesh.num_real_tets(), 1);
     const Vec3 size = glm::max(bounds_.size(), Vec3(1e-300));
     // About one grid cell per tet, shaped like the bounds.
@@ -91,7 +92,7 @@ bool PointLocator::walk(const Vec3& p, CellId t, Location& out) const {
 
 std::optional<Location> PointLocator::locate(const Vec3& p, CellId hint) const {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return std::nullopt;
-    const double pad = 1e-9 * bounds_.diagonal();
+    const double pad = pad_;
     if (p.x < bounds_.lo.x - pad || p.y < bounds_.lo.y - pad || p.z < bounds_.lo.z - pad ||
         p.x > bounds_.hi.x + pad || p.y > bounds_.hi.y + pad || p.z > bounds_.hi.z + pad) {
         return std::nullopt;

@@ -41,6 +41,7 @@ class PointLocator {
     const TetMesh& mesh_;
     const FaceAdjacency& adjacency_;
     Bounds3 bounds_;
+    double pad_ = 0;  // points this far outside the bounds are still tried
     int nx_ = 1, ny_ = 1, nz_ = 1;
     Vec3 cell_size_{1.0};
     std::vector<std::uint32_t> cell_start_;  // CSR over grid cells
