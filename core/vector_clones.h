@@ -7,7 +7,15 @@
 // (TR_FORCE_INLINE; TR_FORCE_INLINE_LAMBDA after a lambda's parameters), or it runs the
 // baseline's code.
 
-#if defined(__x86_64__) && defined(__linux__) && !defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__)  // GCC
+#define TR_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)  // Clang
+#if __has_feature(address_sanitizer)
+#define TR_ADDRESS_SANITIZER 1
+#endif
+#endif
+
+#if defined(__x86_64__) && defined(__linux__) && !defined(TR_ADDRESS_SANITIZER)
 #define TR_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define TR_VECTOR_CLONES
