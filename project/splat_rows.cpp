@@ -12,16 +12,25 @@ TR_FORCE_INLINE float exp_small(float x) {
     return 1.0f + x * (1.0f + x * (0.5f + x * (1.0f / 6.0f + x * (1.0f / 24.0f))));
 }
 
+// Four stamps' weights, by value (held in registers across a loop).
+struct Weights {
+    float w0, w1, w2, w3;
+    explicit Weights(const float* w) : w0(w[0]), w1(w[1]), w2(w[2]), w3(w[3]) {}
+};
+
+// The optical depth at pixel i of four stamps' rows, weighted.
+// (Plain pointers: the loops' own are restrict.)
+TR_FORCE_INLINE float blend(const float* sa, const float* sb, const float* sc, const float* sd,
+                            Weights w, int i) {
+    return w.w0 * sa[i] + w.w1 * sb[i] + w.w2 * sc[i] + w.w3 * sd[i];
+}
+
 }  // namespace
 
 TR_VECTOR_CLONES void blend_stamps(float* __restrict out, const StampRows& stamps, int n) {
-    const float* __restrict a = stamps.stamp[0];
-    const float* __restrict b = stamps.stamp[1];
-    const float* __restrict c = stamps.stamp[2];
-    const float* __restrict d = stamps.stamp[3];
-    const float w0 = stamps.weight[0], w1 = stamps.weight[1];
-    const float w2 = stamps.weight[2], w3 = stamps.weight[3];
-    for (int i = 0; i < n; ++i) out[i] = w0 * a[i] + w1 * b[i] + w2 * c[i] + w3 * d[i];
+    const auto& s = stamps.stamp;
+    const Weights w(stamps.weight);
+    for (int i = 0; i < n; ++i) out[i] = blend(s[0], s[1], s[2], s[3], w, i);
 }
 
 TR_VECTOR_CLONES void composite(const ColorRow& row, const float* __restrict tau, int n,
@@ -45,12 +54,11 @@ template <bool kSmall>
 TR_FORCE_INLINE void composite_stamps_loop(float* __restrict r, float* __restrict g,
                                            float* __restrict b, const float* __restrict sa,
                                            const float* __restrict sb, const float* __restrict sc,
-                                           const float* __restrict sd, const float* w, int n,
+                                           const float* __restrict sd, Weights w, int n,
                                            const Vec3f& c) {
-    const float w0 = w[0], w1 = w[1], w2 = w[2], w3 = w[3];
     const float cr = c.r, cg = c.g, cb = c.b;
     for (int i = 0; i < n; ++i) {
-        const float tau = w0 * sa[i] + w1 * sb[i] + w2 * sc[i] + w3 * sd[i];
+        const float tau = blend(sa, sb, sc, sd, w, i);
         const float e = kSmall ? exp_small(-tau) : exp_nonpositive(-tau), alpha = 1.0f - e;
         r[i] = e * r[i] + alpha * cr;
         g[i] = e * g[i] + alpha * cg;
@@ -61,12 +69,10 @@ TR_FORCE_INLINE void composite_stamps_loop(float* __restrict r, float* __restric
 TR_FORCE_INLINE void add_stamps_loop(float* __restrict t, float* __restrict r, float* __restrict g,
                                      float* __restrict b, const float* __restrict sa,
                                      const float* __restrict sb, const float* __restrict sc,
-                                     const float* __restrict sd, const float* w, int n,
-                                     const Vec3f& c) {
-    const float w0 = w[0], w1 = w[1], w2 = w[2], w3 = w[3];
+                                     const float* __restrict sd, Weights w, int n, const Vec3f& c) {
     const float cr = c.r, cg = c.g, cb = c.b;
     for (int i = 0; i < n; ++i) {
-        const float tau = w0 * sa[i] + w1 * sb[i] + w2 * sc[i] + w3 * sd[i];
+        const float tau = blend(sa, sb, sc, sd, w, i);
         t[i] += tau;
         r[i] += tau * cr;
         g[i] += tau * cg;
@@ -119,7 +125,7 @@ TR_FORCE_INLINE int for_each_block_row(const StampBlock& block, Row&& row) {
 TR_VECTOR_CLONES int composite_stamp_block(const ColorRow& tile, const StampBlock& block,
                                            const Vec3f& c, bool small) {
     const auto& s = block.stamps.stamp;
-    const float* w = block.stamps.weight;
+    const Weights w(block.stamps.weight);
     return for_each_block_row(block, [&](int pixel, int sample, int n) TR_FORCE_INLINE_LAMBDA {
         if (small) {
             composite_stamps_loop<true>(tile.r + pixel, tile.g + pixel, tile.b + pixel,
@@ -136,7 +142,7 @@ TR_VECTOR_CLONES int composite_stamp_block(const ColorRow& tile, const StampBloc
 TR_VECTOR_CLONES int add_stamp_block_to_sheet(const SheetRow& tile, const StampBlock& block,
                                               const Vec3f& c) {
     const auto& s = block.stamps.stamp;
-    const float* w = block.stamps.weight;
+    const Weights w(block.stamps.weight);
     return for_each_block_row(block, [&](int pixel, int sample, int n) TR_FORCE_INLINE_LAMBDA {
         add_stamps_loop(tile.tau + pixel, tile.r + pixel, tile.g + pixel, tile.b + pixel,
                         s[0] + sample, s[1] + sample, s[2] + sample, s[3] + sample, w, n, c);

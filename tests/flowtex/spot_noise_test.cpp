@@ -43,6 +43,23 @@ glm::dmat3 rotation_matrix(double omega) {
     return a;
 }
 
+// Spots in the band |z| < band of the fixture turning about z at 1 radian per unit time (built
+// in place: the locator, velocity and flow point into the fixture).
+struct RotatingBand {
+    MeshFixture f = fixture(rotation_matrix(1.0), Vec3(0.0));
+    PointLocator locator{f.mesh, f.adjacency};
+    VelocityField velocity = VelocityField::steady(f.mesh, f.field).value();
+    MeshFlow flow{f.mesh, f.adjacency, velocity};
+
+    SpotNoise spots(double band, std::size_t count) const {
+        SpotNoiseOptions o;
+        o.iso = 0.0;
+        o.band = band;
+        o.count = count;
+        return SpotNoise::create(f.mesh, locator, z_field(f), flow, o).value();
+    }
+};
+
 TEST(SpotNoise, EveryCentreLiesInTheBandInEveryFrame) {
     // The flow crosses the band (v.z != 0) and leaves the box: spots are reseeded every frame.
     const MeshFixture f = fixture(glm::dmat3(0.0), Vec3(0.5, 0.3, 0.2));
@@ -240,15 +257,8 @@ TEST(SpotNoise, DensityStaysEvenInRigidRotation) {
 }
 
 TEST(SpotNoise, EllipsesPointAlongTheProjectedVelocity) {
-    const MeshFixture f = fixture(rotation_matrix(1.0), Vec3(0.0));
-    const PointLocator locator(f.mesh, f.adjacency);
-    const VelocityField velocity = VelocityField::steady(f.mesh, f.field).value();
-    const MeshFlow flow(f.mesh, f.adjacency, velocity);
-    SpotNoiseOptions o;
-    o.iso = 0.0;
-    o.band = 0.05;
-    o.count = 40;
-    SpotNoise spots = SpotNoise::create(f.mesh, locator, z_field(f), flow, o).value();
+    const RotatingBand rotating;
+    const SpotNoise spots = rotating.spots(0.05, 40);
     Camera c;
     c.parallel = true;
     c.parallel_scale = 2.0;
@@ -314,15 +324,8 @@ TEST(SpotNoise, EachPixelsCoverageIsTheSumOfTheSpotsGaussians) {
     // Spots of every shape the raster has: round and small (sigma 1.5 px, drawn as products of
     // exponentials), stretched along the flow (up to sigma 6.6 px along, by rows), against the
     // sum over the spots of exp(-q / 2) where q < 9, in double from spot_ellipse.
-    const MeshFixture f = fixture(rotation_matrix(1.0), Vec3(0.0));
-    const PointLocator locator(f.mesh, f.adjacency);
-    const VelocityField velocity = VelocityField::steady(f.mesh, f.field).value();
-    const MeshFlow flow(f.mesh, f.adjacency, velocity);
-    SpotNoiseOptions o;
-    o.iso = 0.0;
-    o.band = 0.05;
-    o.count = 300;
-    SpotNoise spots = SpotNoise::create(f.mesh, locator, z_field(f), flow, o).value();
+    const RotatingBand rotating;
+    const SpotNoise spots = rotating.spots(0.05, 300);
     Camera c;
     c.parallel = true;
     c.parallel_scale = 2.0;
