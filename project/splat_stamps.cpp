@@ -16,7 +16,8 @@ int stamp_width(double radius) { return (2 * static_cast<int>(std::floor(radius)
 
 bool SplatStamps::fits(const SplatFootprint& footprint, double pixels_per_unit) {
     const double radius = footprint.support() * pixels_per_unit;
-    return pixels_per_unit > 0 && radius < kMaxWidth && stamp_width(radius) <= kMaxWidth;
+    return pixels_per_unit >= kResolution / kMaxSteps && radius < kMaxWidth &&
+           stamp_width(radius) <= kMaxWidth;
 }
 
 SplatStamps::SplatStamps(const SplatFootprint& footprint, double pixels_per_unit) {
@@ -24,7 +25,7 @@ SplatStamps::SplatStamps(const SplatFootprint& footprint, double pixels_per_unit
     const double radius = footprint.support() * pixels_per_unit;
     reach_ = static_cast<int>(std::floor(radius)) + 1;
     width_ = stamp_width(radius);
-    steps_ = std::clamp(static_cast<int>(std::ceil(kResolution / pixels_per_unit)), 1, 64);
+    steps_ = std::clamp(static_cast<int>(std::ceil(kResolution / pixels_per_unit)), 1, kMaxSteps);
     const int offsets = steps_ + 1;
     samples_.assign(static_cast<std::size_t>(offsets) * offsets * area(), 0.0f);
     // Per stamp: its rows' non-zero columns [from, to).

@@ -14,9 +14,9 @@
 //
 // Accuracy: blending in the offset is exact at the stamps' offsets and elsewhere off by the
 // footprint's curvature times (1 / (steps * pixels_per_unit))^2 / 8 (kernel units); steps is
-// chosen so that steps * pixels_per_unit >= kResolution, bounding that alike at any scale (up to
-// 64 steps). Measured in tests/splat/splat_stamps_test.cpp: within 2.3e-4 of the footprint's peak
-// from 2 to 30 pixels per kernel unit, 4.6e-4 at 0.7 (a sixteenth and an eighth of an 8-bit
+// chosen so that steps * pixels_per_unit >= kResolution, bounding that alike at any scale (from
+// 1 pixel per kernel unit, 64 steps). Measured in tests/splat/splat_stamps_test.cpp: within
+// 2.3e-4 of the footprint's peak from 1 to 30 pixels per kernel unit (a sixteenth of an 8-bit
 // level).
 
 #include <project/splat_kernel.h>
@@ -31,8 +31,12 @@ class SplatStamps {
     static constexpr double kResolution = 64.0;
     // The widest stamp built (pixels): larger splats are drawn without stamps.
     static constexpr int kMaxWidth = 160;
+    // The most sub-pixel steps: splats under kResolution / kMaxSteps = 1 pixel per kernel unit
+    // (where stamps would be coarser than kResolution) are drawn without stamps.
+    static constexpr int kMaxSteps = 64;
 
-    // Whether a footprint at `pixels_per_unit` fits in stamps of at most kMaxWidth pixels.
+    // Whether a footprint at `pixels_per_unit` is stamped: at least 1 pixel per kernel unit, in
+    // stamps of at most kMaxWidth pixels.
     static bool fits(const SplatFootprint& footprint, double pixels_per_unit);
 
     // Preconditions: pixels_per_unit > 0 and fits(footprint, pixels_per_unit) (checked).
