@@ -12,24 +12,10 @@ AnimationWorker::AnimationWorker(Pipeline& pipeline, Scene scene, int steps)
     thread_ = std::thread([this] { run(); });
 }
 
-AnimationWorker::~AnimationWorker() {
-    {
-        std::lock_guard lock(mutex_);
-        stop_ = true;
-    }
-    wake_.notify_all();
-    thread_.join();
-}
+AnimationWorker::~AnimationWorker() { stop_and_join(); }
 
 std::uint64_t AnimationWorker::request(AnimationRequest request) {
-    std::uint64_t id;
-    {
-        std::lock_guard lock(mutex_);
-        id = ++next_id_;
-        pending_.emplace(std::move(request), id);
-    }
-    wake_.notify_all();
-    return id;
+    return post(std::move(request));
 }
 
 AnimationFrames AnimationWorker::latest() const {

@@ -12,6 +12,7 @@
 // bytes a pixel and frame ((steps + 1) x width x height x 12 bytes: 101 frames of 960x600 are
 // 0.7 GB), checked against the memory budget (core/memory_budget.h) before the render.
 
+#include <apps/viewer/request_worker.h>
 #include <core/camera.h>
 #include <core/image.h>
 #include <project/scene.h>
@@ -51,7 +52,7 @@ struct AnimationFrames {
     std::string error;      // the render failed: the frames before it stay
 };
 
-class AnimationWorker {
+class AnimationWorker : private RequestWorker<AnimationRequest> {
   public:
     // Renders `scene` (one volume; its method texture-advection or spot-noise, with its keys,
     // and `steps`: frames 0 .. steps) through `pipeline`, which the worker thread then uses
@@ -87,13 +88,7 @@ class AnimationWorker {
     const int steps_;
     std::function<void()> on_frame_;
 
-    mutable std::mutex mutex_;
-    std::condition_variable wake_, done_;
-    std::optional<std::pair<AnimationRequest, std::uint64_t>> pending_;
     AnimationFrames latest_;
-    std::uint64_t next_id_ = 0;
-    bool stop_ = false;
-    std::thread thread_;  // last: started when the rest is ready
 };
 
 }  // namespace tr::viewer

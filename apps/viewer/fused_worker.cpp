@@ -57,25 +57,9 @@ FusedWorker::FusedWorker(std::vector<FusedMesh> meshes, std::vector<OpaqueSurfac
     thread_ = std::thread([this] { run(); });
 }
 
-FusedWorker::~FusedWorker() {
-    {
-        std::lock_guard lock(mutex_);
-        stop_ = true;
-    }
-    wake_.notify_all();
-    thread_.join();
-}
+FusedWorker::~FusedWorker() { stop_and_join(); }
 
-std::uint64_t FusedWorker::request(FusedRequest request) {
-    std::uint64_t id;
-    {
-        std::lock_guard lock(mutex_);
-        id = ++next_id_;
-        pending_.emplace(std::move(request), id);
-    }
-    wake_.notify_all();
-    return id;
-}
+std::uint64_t FusedWorker::request(FusedRequest request) { return post(std::move(request)); }
 
 void FusedWorker::set_target(int repetitions) {
     {

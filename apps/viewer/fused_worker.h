@@ -11,6 +11,7 @@
 // in progress after its current batch or exact picture; the window never waits: it shows the
 // latest picture.
 
+#include <apps/viewer/request_worker.h>
 #include <apps/viewer/view_method.h>
 #include <core/camera.h>
 #include <core/image.h>
@@ -82,7 +83,7 @@ struct FusedFrame {
     std::string error;      // a batch failed (out of memory): nothing more for this request
 };
 
-class FusedWorker {
+class FusedWorker : private RequestWorker<FusedRequest> {
   public:
     // Progressive mode: how long the view must stay after the quick picture before the exact
     // one (which cannot be interrupted) is begun.
@@ -136,18 +137,12 @@ class FusedWorker {
     const PbvrSettings settings_;
     std::function<void()> on_frame_;
 
-    mutable std::mutex mutex_;
-    std::condition_variable wake_, done_;
-    std::optional<std::pair<FusedRequest, std::uint64_t>> pending_;
     std::optional<FusedFrame> latest_;
-    std::uint64_t next_id_ = 0;
     int target_;
-    bool stop_ = false;
 
     // Worker thread only: per volume; the last quick picture's time per full-size pixel.
     std::vector<std::unique_ptr<ShaderCache>> shaders_;
     double preview_ms_per_pixel_ = 0;
-    std::thread thread_;  // last: started when the rest is ready
 };
 
 }  // namespace tr::viewer

@@ -48,25 +48,9 @@ PbvrWorker::PbvrWorker(const TetMesh& mesh, std::vector<OpaqueSurface> opaque, d
     thread_ = std::thread([this] { run(); });
 }
 
-PbvrWorker::~PbvrWorker() {
-    {
-        std::lock_guard lock(mutex_);
-        stop_ = true;
-    }
-    wake_.notify_all();
-    thread_.join();
-}
+PbvrWorker::~PbvrWorker() { stop_and_join(); }
 
-std::uint64_t PbvrWorker::request(PbvrRequest request) {
-    std::uint64_t id;
-    {
-        std::lock_guard lock(mutex_);
-        id = ++next_id_;
-        pending_.emplace(std::move(request), id);
-    }
-    wake_.notify_all();
-    return id;
-}
+std::uint64_t PbvrWorker::request(PbvrRequest request) { return post(std::move(request)); }
 
 void PbvrWorker::set_target(int repetitions) {
     {

@@ -16,6 +16,7 @@
 // again (after retarget() for a new function) instead of being generated anew; a perspective
 // camera that moves, a new scalar or a new size generates them again.
 
+#include <apps/viewer/request_worker.h>
 #include <apps/viewer/view_method.h>
 #include <core/camera.h>
 #include <core/image.h>
@@ -71,7 +72,7 @@ struct PbvrFrame {
     std::string error;      // the batch failed (out of memory): nothing more for this request
 };
 
-class PbvrWorker {
+class PbvrWorker : private RequestWorker<PbvrRequest> {
   public:
     // `mesh` (its real tets are drawn) and the surfaces `opaque` points to must outlive the
     // worker. `longest_edge`: the mesh's (cpu_renderer.h), for pbvr-image's shader.
@@ -116,13 +117,8 @@ class PbvrWorker {
     const PbvrSettings settings_;
     std::function<void()> on_frame_;
 
-    mutable std::mutex mutex_;
-    std::condition_variable wake_, done_;
-    std::optional<std::pair<PbvrRequest, std::uint64_t>> pending_;
     std::optional<PbvrFrame> latest_;
-    std::uint64_t next_id_ = 0;
     int target_;
-    bool stop_ = false;
 
     // Worker thread only: O-PBVR's kept particles and pbvr-image's shader.
     struct KeptBatch;
@@ -130,7 +126,6 @@ class PbvrWorker {
     std::uint64_t kept_scalar_version_ = 0;
     struct ShaderCache;
     std::unique_ptr<ShaderCache> shader_;
-    std::thread thread_;  // last: started when the rest is ready
 };
 
 }  // namespace tr::viewer
