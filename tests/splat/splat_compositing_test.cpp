@@ -5,6 +5,7 @@
 #include <project/reference_raycaster.h>
 #include <project/splat_renderer.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
+#include <tests/splat/splat_inputs.h>
 
 #include <gtest/gtest.h>
 
@@ -90,15 +91,8 @@ TEST(SplatCompositing, SheetBufferPopsLessWhereTheOrderFlips) {
     const SplatFootprint footprint(SplatKernel::kCrawfisMax);
     auto render = [&](double degrees, SplatCompositing compositing) {
         const CameraFrame frame = orbit_view(degrees, 96);
-        SplatInputs in;
-        in.points = box.points();
-        in.scalar = scalar;
-        in.spacing = 0.25;
-        in.tf = &tf;
-        in.footprint = &footprint;
-        in.camera = &frame;
-        in.compositing = compositing;
-        return render_splats(in);
+        return render_splats(
+            testing::splat_inputs(box.points(), scalar, 0.25, tf, footprint, frame, compositing));
     };
     const double deg = 180 / std::numbers::pi;
     const double flips[] = {0.0, std::atan(1.0 / 3) * deg, std::atan(0.5) * deg,

@@ -5,6 +5,7 @@
 #include <project/splat_renderer.h>
 #include <project/splat_stamps.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
+#include <tests/splat/splat_inputs.h>
 
 #include <gtest/gtest.h>
 
@@ -93,14 +94,8 @@ TEST(SplatStamps, LatticeFromStampsIsTheTablesPicture) {
         for (SplatCompositing compositing :
              {SplatCompositing::kPerSplat, SplatCompositing::kSheetBuffer}) {
             const SplatFootprint footprint(kernel);
-            SplatInputs in;
-            in.points = box.points();
-            in.scalar = scalar;
-            in.spacing = 0.5;
-            in.tf = &tf;
-            in.footprint = &footprint;
-            in.camera = &frame;
-            in.compositing = compositing;
+            SplatInputs in =
+                testing::splat_inputs(box.points(), scalar, 0.5, tf, footprint, frame, compositing);
             const Image stamped = render_splats(in);
             in.radius = radius;
             const Image table = render_splats(in);
