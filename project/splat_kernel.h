@@ -86,6 +86,12 @@ class SplatFootprint {
         return entry[0] + f * (entry[1] - entry[0]);
     }
 
+    // The rho^2 table as of_squared_inside reads it: its samples, index per unit of rho^2, and
+    // the index of support^2 (for loops that inline the lookup).
+    const float* squared_table() const { return squared_table_.data(); }
+    float squared_scale() const { return squared_scale_; }
+    float squared_last() const { return squared_last_; }
+
     // f(rho) by direct quadrature (what the tables hold at their samples).
     static double integrate(SplatKernel kernel, double rho);
 

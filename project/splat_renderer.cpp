@@ -451,16 +451,22 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
     const auto raster_ortho =
         sheets ? (opaque ? raster_splat<true, true> : raster_splat<true, false>)
                : (opaque ? raster_splat<false, true> : raster_splat<false, false>);
+    const splat_rows::FootprintTable table{fp.squared_table(), fp.squared_scale(),
+                                           fp.squared_last(), static_cast<float>(support_sq)};
     std::atomic<std::size_t> fragments{0};
     parallel_for(0, tiles, 1, [&](std::size_t tile) {
         const int x0 = static_cast<int>(tile % tiles_x) * kTile;
         const int y0 = static_cast<int>(tile / tiles_x) * kTile;
         const int x1 = std::min(x0 + kTile, w) - 1, y1 = std::min(y0 + kTile, h) - 1;
         if (bin_start[tile] == bin_start[tile + 1]) return;
-        Ray rays[kTile * kTile];
+        // Perspective: the pixels' rays from the eye, their unit directions planar.
+        double dir_x[kTile * kTile], dir_y[kTile * kTile], dir_z[kTile * kTile];
         for (int y = y0; !orthographic && y <= y1; ++y) {
-            for (int x = x0; x <= x1; ++x)
-                rays[(y - y0) * kTile + (x - x0)] = camera.pixel_ray(x, y);
+            for (int x = x0; x <= x1; ++x) {
+                const Vec3 d = camera.pixel_ray(x, y).direction;
+                const int k = (y - y0) * kTile + (x - x0);
+                dir_x[k] = d.x, dir_y[k] = d.y, dir_z[k] = d.z;
+            }
         }
         TileBuffers buffers;
         auto pixel = [&](int x, int y) -> Vec3f& {
@@ -517,16 +523,32 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
                 continue;
             }
             const double kernel_h = s.h, reach_sq = support_sq * kernel_h * kernel_h;
-            const Vec3& center = in.points[s.point];
+            const Vec3 v = in.points[s.point] - camera.eye();
+            if (!opaque) {
+                // Row by row, vectorised (project/splat_rows.h).
+                float tau[kTile];
+                for (int y = ya; y <= yb; ++y) {
+                    const int k = (y - y0) * kTile + (xa - x0), n = xb - xa + 1;
+                    splat_rows::perspective_depths(tau, dir_x + k, dir_y + k, dir_z + k, n, v,
+                                                   1.0 / (kernel_h * kernel_h), s.kappa_h, table);
+                    if (sheets) {
+                        composite_row<true>(buffers, tile_index(xa - x0, y - y0), tau, n, s.color);
+                    } else {
+                        composite_row<false>(buffers, tile_index(xa - x0, y - y0), tau, n, s.color);
+                    }
+                    count += static_cast<std::size_t>(n);
+                }
+                continue;
+            }
             for (int y = ya; y <= yb; ++y) {
                 for (int x = xa; x <= xb; ++x) {
                     const int local = tile_index(x - x0, y - y0);
-                    const Ray& ray = rays[(y - y0) * kTile + (x - x0)];
-                    const Vec3 v = center - ray.origin;
-                    const double t = glm::dot(v, ray.direction);  // the centre's ray parameter
+                    const int k = (y - y0) * kTile + (x - x0);
+                    const Vec3 d(dir_x[k], dir_y[k], dir_z[k]);
+                    const double t = glm::dot(v, d);  // the centre's ray parameter
                     const double rho_sq = glm::dot(v, v) - t * t;
                     if (!(rho_sq < reach_sq) || !(t > 0)) continue;
-                    if (opaque && !(t < opaque[static_cast<std::size_t>(y) * w + x])) continue;
+                    if (!(t < opaque[static_cast<std::size_t>(y) * w + x])) continue;
                     const double rho = std::sqrt(std::max(rho_sq, 0.0)) / kernel_h;
                     const auto tau = s.kappa_h * static_cast<float>(fp(rho));
                     ++count;

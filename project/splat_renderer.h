@@ -33,7 +33,8 @@
 // order above. Orthographic splats of one scale (a lattice's: no per-point radius) are drawn from
 // footprint stamps (project/splat_stamps.h: within 2.3e-4 of the footprint's peak) by the
 // vectorised row loops of project/splat_rows.h; other orthographic splats read the footprint's
-// table per pixel by rho^2, perspective ones by the distance from each pixel's ray.
+// table per pixel by rho^2, perspective ones too, rho the distance from each pixel's ray (row by
+// row, project/splat_rows.h's perspective_depths; with opaque geometry pixel by pixel).
 
 #include <core/camera.h>
 #include <core/image.h>

@@ -1,8 +1,8 @@
 #pragma once
 // The splat raster's inner loops (project/splat_renderer.cpp), one row of pixels at a time over
-// planar float buffers: each a straight loop the compiler vectorises, built twice on x86-64
-// (AVX2 and the baseline, chosen when the program loads: target_clones). The arithmetic is the
-// same in both (no fused multiply-add: ISO C++ mode), so are the pictures.
+// planar float buffers: each a straight loop the compiler vectorises (but perspective_depths),
+// built twice on x86-64 (AVX2 and the baseline, chosen when the program loads: target_clones). The
+// arithmetic is the same in both (no fused multiply-add: ISO C++ mode), so are the pictures.
 //
 // Compositing a splat over a pixel, optical depth tau and colour c: e = e^-tau,
 // p <- e p + (1 - e) c (tau = 0 leaves p exactly as it was). A sheet buffer sums tau and tau c per
@@ -49,6 +49,21 @@ void add_to_sheet(const SheetRow& sheet, const float* tau, int n, const Vec3f& c
 
 // n pixels of a sheet buffer composited over `row`, and the sheet's pixels set to 0.
 void composite_sheet(const ColorRow& row, const SheetRow& sheet, int n);
+
+// A footprint's rho^2 table (SplatFootprint::squared_table and its scale and last index) and
+// its support^2 (kernel units).
+struct FootprintTable {
+    const float* values;
+    float scale, last;
+    float support_sq;
+};
+
+// A perspective splat's optical depths over n pixels of a row whose rays leave the eye along the
+// unit directions (dx[i], dy[i], dz[i]), the splat's centre at v from the eye: tau[i] = kappa_h
+// f(rho^2 / h^2), rho the distance from the centre to the ray (|v x d|, in double), where the
+// centre lies ahead (v . d > 0) and rho < the support, else 0. f read from the table by rho^2.
+void perspective_depths(float* tau, const double* dx, const double* dy, const double* dz, int n,
+                        const Vec3& v, double inv_h_sq, float kappa_h, const FootprintTable& table);
 
 // A whole splat drawn from stamps into a tile (row-major, rows `stride` long): rows v_from ...
 // v_to of the stamps (`width` samples a row, a multiple of 8), in each the columns within the
