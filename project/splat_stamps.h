@@ -58,12 +58,6 @@ class SplatStamps {
     };
     Placement place(double cx, double cy) const;
 
-    // The footprint sample of stamp (i, j) at column u, row v (for tests).
-    float sample(int i, int j, int u, int v) const {
-        return samples_[(static_cast<std::size_t>(j) * (steps_ + 1) + i) * area() +
-                        static_cast<std::size_t>(v) * width_ + u];
-    }
-
   private:
     std::size_t area() const { return static_cast<std::size_t>(width_) * width_; }
 
