@@ -1,7 +1,7 @@
 // libFuzzer target: a surface file through read_surface() (io/read_surface.h). The first byte
-// picks the extension (.off: our parser; .stl, .ply, .obj: our pre-checks, then VTK's
-// readers), the rest is the file, written to a temporary file in /dev/shm. A surface read
-// must pass check_surface (checks.h): triangles, ids in range, finite points.
+// picks the extension (.off, .stl, .ply, .obj: all our own parsers), the rest is the file, written
+// to a temporary file in /dev/shm. A surface read must pass check_surface (checks.h): triangles,
+// ids in range, finite points.
 
 #include <io/read_surface.h>
 

@@ -22,8 +22,13 @@ Result<SurfaceMesh> read_surface(const std::filesystem::path& path) {
             surface = read_off(path);
         } else if (ext == ".poly") {
             surface = read_poly(path);
-        } else if (ext == ".stl" || ext == ".ply" || ext == ".obj" || ext == ".vtp" ||
-                   ext == ".vtk") {
+        } else if (ext == ".ply") {
+            surface = read_ply(path);
+        } else if (ext == ".obj") {
+            surface = read_obj(path);
+        } else if (ext == ".stl") {
+            surface = read_stl(path);
+        } else if (ext == ".vtp" || ext == ".vtk") {
             surface = read_vtk_surface(path, ext);
         } else {
             std::string list;

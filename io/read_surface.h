@@ -11,9 +11,9 @@
 namespace tr {
 
 // Reads a surface; the format comes from the (case-insensitive) extension:
-//   .stl (ASCII or binary), .ply, .obj, .vtp (VTK XML polydata), .vtk (legacy polydata),
-//   .off (hand-parsed), .poly (TetGen: points, facets, holes; 0- or 1-based). An .obj's face,
-//   line and point indices are checked against its v, vt and vn before VTK reads it.
+//   .stl (ASCII or binary; corners merged), .ply (ASCII or binary), .obj, .off, .poly (TetGen:
+//   points, facets, holes; 0- or 1-based), all parsed here; .vtp (VTK XML polydata) and .vtk
+//   (legacy polydata) through VTK after structural checks.
 // Polygons are fan-triangulated; `name` is the file stem; `holes` is filled from .poly only.
 // Errors as read_mesh(): kNotFound, kUnsupported (unknown extension), kParse, kInvalidMesh
 // (indices out of range, non-finite points, no triangles); `where` is the path or path:line.

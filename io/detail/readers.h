@@ -38,10 +38,21 @@ UnstructuredMesh read_tetgen(const fs::path& path, const ProgressRange& progress
 UnstructuredMesh read_csv_points(const fs::path& path, const ProgressRange& progress);
 UnstructuredMesh read_mfem(const fs::path& path, const ProgressRange& progress);
 
-// Surfaces: .stl .ply .obj .vtp .vtk through VTK; .off and .poly by hand.
+// Surfaces: .vtp .vtk through VTK; .off and .poly by hand (text_readers.cpp).
 SurfaceMesh read_vtk_surface(const fs::path& path, const std::string& ext);
 SurfaceMesh read_off(const fs::path& path);
 SurfaceMesh read_poly(const fs::path& path);
+// PLY, OBJ and STL by hand (surface_readers.cpp). Polygons fan-triangulated; every corner
+// checked against the points (kInvalidMesh naming the face); malformed lines kParse naming
+// path:line. PLY: ASCII or binary, either byte order, any elements and properties (vertex x, y,
+// z and the face's vertex_indices or vertex_index list kept). OBJ: v and f (v, v/vt, v//vn,
+// v/vt/vn, negative = relative; '\' continues a line); every index must name a v, vt or vn
+// the file has; unknown keywords refused. STL: binary when the size is 84 + 50 n, else ASCII
+// ('solid ...'); points merged by exact coordinates, triangles that merge to a line dropped.
+// Cost: O(file size).
+SurfaceMesh read_ply(const fs::path& path);
+SurfaceMesh read_obj(const fs::path& path);
+SurfaceMesh read_stl(const fs::path& path);
 
 }  // namespace tr::io_detail
 
@@ -73,16 +84,6 @@ void check_plot3d(const fs::path& xyz, const fs::path& q);
 // is consistent. `want_dataset` (e.g. "POLYDATA"), when not empty, must be the DATASET type.
 // Throws IoError (kParse; kUnsupported for a DATASET that is not a mesh). Cost: O(file size).
 void check_vtk_legacy(const fs::path& path, const std::string& want_dataset);
-
-// PLY: parses the header (vertex with x, y, z; face with a vertex_indices list) and walks the
-// body (ASCII: tokens per line; binary: sizes and list lengths) so that it fits the file.
-void check_ply(const fs::path& path);
-
-// OBJ (text_readers.cpp): every index of every face, line and point element ('f', 'l', 'p')
-// refers to a vertex, texture coordinate or normal the file has (VTK 9.1's reader dereferences
-// a missing one: `f 1/1 2/1 3/1` without any `vt` is a SIGSEGV). Throws IoError (kParse)
-// naming the line. Cost: O(file size).
-void check_obj(const fs::path& path);
 
 // VTK XML pre-checks and scanners (xml_checks.cpp).
 // The value of attribute `name` in the tag starting at or after `from` (up to its '>'), or "".

@@ -26,14 +26,11 @@
 #include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkMultiBlockPLOT3DReader.h>
-#include <vtkOBJReader.h>
-#include <vtkPLYReader.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataReader.h>
 #include <vtkRectilinearGrid.h>
-#include <vtkSTLReader.h>
 #include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStructuredGrid.h>
@@ -676,82 +673,27 @@ SurfaceMesh surface_from_polydata(vtkPolyData* poly, const std::string& where) {
     return surface;
 }
 
-void check_stl(const fs::path& path, std::uintmax_t size) {
-    const std::string head = read_head(path, 84);
-    if (head.size() == 84) {
-        std::uint32_t n = 0;
-        std::memcpy(&n, head.data() + 80, 4);
-        if (84 + 50 * static_cast<std::uintmax_t>(n) == size) return;  // binary
-    }
-    // VTK 9.1 reads an STL as ASCII when 95% of its first 256 bytes are text
-    // (vtksys::SystemTools::DetectFileType: 0x20..0x7f, \n, \r, \t), as binary otherwise: then
-    // it allocates the triangle count of bytes 80..83, whatever the file's size (a 440-byte
-    // file asked for gigabytes). Such a file must have the binary size (checked above).
-    const std::string first = read_head(path, 256);
-    std::size_t text = 0;
-    for (unsigned char c : first) {
-        text += (c >= 0x20 && c <= 0x7f) || c == '\n' || c == '\r' || c == '\t';
-    }
-    const bool vtk_reads_binary =
-        first.empty() ||
-        static_cast<double>(first.size() - text) / static_cast<double>(first.size()) >= 0.05;
-    std::size_t p = 0;
-    while (p < head.size() && std::isspace(static_cast<unsigned char>(head[p]))) ++p;
-    if (!vtk_reads_binary && head.compare(p, 5, "solid") == 0) {
-        // ASCII: must also be text.
-        if (read_head(path, 1 << 16).find('\0') == std::string::npos) return;
-    }
-    fail(ErrorCode::kParse,
-         "not an STL file: neither ASCII ('solid ...') nor binary (84 + 50 n bytes for n "
-         "triangles)",
-         path.string());
-}
-
 }  // namespace
 
 SurfaceMesh read_vtk_surface(const fs::path& path, const std::string& ext) {
     const std::string where = path.string();
-    const std::uintmax_t size = check_readable_file(path);
-    vtkSmartPointer<vtkAlgorithm> reader;
-    std::string what;
-    if (ext == ".stl") {
-        check_stl(path, size);
-        auto r = vtkSmartPointer<vtkSTLReader>::New();
-        r->SetFileName(path.c_str());
-        reader = r;
-        what = "STL";
-    } else if (ext == ".ply") {
-        check_ply(path);
-        auto r = vtkSmartPointer<vtkPLYReader>::New();
-        r->SetFileName(path.c_str());
-        reader = r;
-        what = "PLY";
-    } else if (ext == ".obj") {
-        check_obj(path);
-        auto r = vtkSmartPointer<vtkOBJReader>::New();
-        r->SetFileName(path.c_str());
-        reader = r;
-        what = "OBJ";
-    } else if (ext == ".vtp") {
+    check_readable_file(path);
+    if (ext == ".vtp") {
         check_vtk_xml(path, "PolyData", ext);
-        auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+        vtkNew<vtkXMLPolyDataReader> r;
         r->SetFileName(path.c_str());
-        what = "VTK XML polydata";
-        vtk_call(r, ProgressRange{}, where, "cannot read " + what, [&] { r->Update(); });
+        vtk_call(r, ProgressRange{}, where, "cannot read VTK XML polydata", [&] { r->Update(); });
         return surface_from_polydata(r->GetOutput(), where);
-    } else if (ext == ".vtk") {
-        check_vtk_legacy(path, "POLYDATA");
-        auto r = vtkSmartPointer<vtkPolyDataReader>::New();
-        r->SetFileName(path.c_str());
-        reader = r;
-        what = "legacy VTK polydata";
-    } else {
-        fail(ErrorCode::kUnsupported, "not a VTK surface extension: " + ext, where);
     }
-    vtk_call(reader, ProgressRange{}, where, "cannot read " + what, [&] { reader->Update(); });
-    vtkPolyData* poly = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
-    if (poly == nullptr) fail(ErrorCode::kParse, "cannot read " + what + ": no output", where);
-    return surface_from_polydata(poly, where);
+    if (ext == ".vtk") {
+        check_vtk_legacy(path, "POLYDATA");
+        vtkNew<vtkPolyDataReader> r;
+        r->SetFileName(path.c_str());
+        vtk_call(r, ProgressRange{}, where, "cannot read legacy VTK polydata",
+                 [&] { r->Update(); });
+        return surface_from_polydata(r->GetOutput(), where);
+    }
+    fail(ErrorCode::kUnsupported, "not a VTK surface extension: " + ext, where);
 }
 
 }  // namespace tr::io_detail

@@ -1,0 +1,775 @@
+// Hand-parsed surface formats: PLY (ASCII, binary in either byte order), OBJ and STL (ASCII,
+// binary). They replaced VTK 9.1's readers, which dereference what a malformed file does not
+// have (fuzz_surface found a new crash in each of them after every pre-check we put in front).
+// Errors name the path, or path:line for text lines.
+
+#include <io/detail/common.h>
+#include <io/detail/readers.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+#include <string_view>
+#include <unordered_map>
+
+namespace tr::io_detail {
+
+namespace {
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+std::vector<std::string_view> split_words(std::string_view line) {
+    std::vector<std::string_view> words;
+    std::size_t p = 0;
+    while (p < line.size()) {
+        while (p < line.size() && is_space(line[p])) ++p;
+        std::size_t q = p;
+        while (q < line.size() && !is_space(line[q])) ++q;
+        if (q > p) words.push_back(line.substr(p, q - p));
+        p = q;
+    }
+    return words;
+}
+
+// A number that is the whole word ("+1" and "1e400" too: the latter becomes inf, which
+// validate_surface refuses); nullopt otherwise.
+std::optional<double> parse_double(std::string_view word) {
+    if (!word.empty() && word[0] == '+') word.remove_prefix(1);
+    if (word.empty()) return std::nullopt;
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
+    if (end != word.data() + word.size()) return std::nullopt;
+    if (ec == std::errc::result_out_of_range)
+        return std::strtod(std::string(word).c_str(), nullptr);
+    if (ec != std::errc()) return std::nullopt;
+    return value;
+}
+
+std::optional<std::int64_t> parse_int(std::string_view word) {
+    if (!word.empty() && word[0] == '+') word.remove_prefix(1);
+    if (word.empty()) return std::nullopt;
+    std::int64_t value = 0;
+    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
+    if (ec != std::errc() || end != word.data() + word.size()) return std::nullopt;
+    return value;
+}
+
+// Polygons as corner lists (flat, with offsets), fan-triangulated once every point is known:
+// PLY may list faces before vertices, OBJ may refer to vertices further down.
+struct Polygons {
+    std::vector<std::int64_t> corners;
+    std::vector<std::size_t> ends;
+    void add(const std::vector<std::int64_t>& polygon) {
+        corners.insert(corners.end(), polygon.begin(), polygon.end());
+        ends.push_back(corners.size());
+    }
+};
+
+// ---------------------------------------------------------------------------------------------
+// PLY
+
+enum class PlyType { kNone, kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
+
+PlyType ply_type(const std::string_view name) {
+    if (name == "char" || name == "int8") return PlyType::kInt8;
+    if (name == "uchar" || name == "uint8") return PlyType::kUint8;
+    if (name == "short" || name == "int16") return PlyType::kInt16;
+    if (name == "ushort" || name == "uint16") return PlyType::kUint16;
+    if (name == "int" || name == "int32") return PlyType::kInt32;
+    if (name == "uint" || name == "uint32") return PlyType::kUint32;
+    if (name == "float" || name == "float32") return PlyType::kFloat32;
+    if (name == "double" || name == "float64") return PlyType::kFloat64;
+    return PlyType::kNone;
+}
+
+std::size_t ply_size(PlyType t) {
+    switch (t) {
+        case PlyType::kInt8:
+        case PlyType::kUint8:
+            return 1;
+        case PlyType::kInt16:
+        case PlyType::kUint16:
+            return 2;
+        case PlyType::kInt32:
+        case PlyType::kUint32:
+        case PlyType::kFloat32:
+            return 4;
+        case PlyType::kFloat64:
+            return 8;
+        case PlyType::kNone:
+            return 0;
+    }
+    return 0;
+}
+
+bool ply_integer(PlyType t) { return t != PlyType::kFloat32 && t != PlyType::kFloat64; }
+
+// One binary value of type `t` at `at` (the caller checked that its bytes are there).
+double ply_binary_value(const std::string& bytes, std::size_t at, PlyType t, bool big_endian) {
+    const std::size_t n = ply_size(t);
+    std::uint64_t v = 0;
+    for (std::size_t b = 0; b < n; ++b) {
+        const std::size_t k = big_endian ? b : n - 1 - b;
+        v = (v << 8) | static_cast<unsigned char>(bytes[at + k]);
+    }
+    switch (t) {
+        case PlyType::kInt8:
+            return static_cast<std::int8_t>(v);
+        case PlyType::kUint8:
+            return static_cast<double>(v);
+        case PlyType::kInt16:
+            return static_cast<std::int16_t>(v);
+        case PlyType::kUint16:
+            return static_cast<double>(v);
+        case PlyType::kInt32:
+            return static_cast<std::int32_t>(v);
+        case PlyType::kUint32:
+            return static_cast<double>(v);
+        case PlyType::kFloat32:
+            return std::bit_cast<float>(static_cast<std::uint32_t>(v));
+        case PlyType::kFloat64:
+            return std::bit_cast<double>(v);
+        case PlyType::kNone:
+            break;
+    }
+    return 0.0;
+}
+
+struct PlyProperty {
+    std::string name;
+    bool list = false;
+    PlyType count_type = PlyType::kNone;  // lists only
+    PlyType type = PlyType::kNone;        // the value's, or a list item's
+};
+
+struct PlyElement {
+    std::string name;
+    std::uint64_t count = 0;
+    std::vector<PlyProperty> properties;
+};
+
+// What the reader keeps of an element's instance: the vertex's x, y, z (by property index) and
+// the face's corner list.
+struct PlyRoles {
+    const PlyElement* vertex = nullptr;
+    const PlyElement* face = nullptr;
+    std::array<std::size_t, 3> xyz{};
+    std::size_t indices = 0;
+};
+
+struct PlyHeader {
+    std::string format;
+    std::vector<PlyElement> elements;
+    std::size_t body = 0;  // offset of the first body byte
+};
+
+PlyHeader parse_ply_header(const std::string& bytes, const std::string& where) {
+    if (bytes.rfind("ply", 0) != 0 || bytes.size() < 4 || (bytes[3] != '\n' && bytes[3] != '\r')) {
+        fail(ErrorCode::kParse, "not a PLY file: it does not start with 'ply'", where);
+    }
+    PlyHeader header;
+    bool ended = false;
+    int line_number = 0;
+    for (std::size_t pos = 0; pos < bytes.size();) {
+        const std::size_t nl = bytes.find('\n', pos);
+        const std::string_view line(bytes.data() + pos,
+                                    (nl == std::string::npos ? bytes.size() : nl) - pos);
+        pos = nl == std::string::npos ? bytes.size() : nl + 1;
+        ++line_number;
+        const std::string at = where + ":" + std::to_string(line_number);
+        for (char ch : line) {
+            const auto c = static_cast<unsigned char>(ch);
+            if (c > 0x7e || (c < 0x20 && c != '\t' && c != '\r')) {
+                fail(ErrorCode::kParse,
+                     "binary data (byte " + std::to_string(c) + ") in the PLY header", at);
+            }
+        }
+        const auto words = split_words(line);
+        if (words.empty() || line_number == 1) continue;  // "ply"
+        const std::string_view key = words[0];
+        if (key == "end_header") {
+            ended = true;
+            header.body = pos;
+            break;
+        }
+        if (key == "comment" || key == "obj_info") continue;
+        if (key == "format") {
+            if (words.size() < 2) fail(ErrorCode::kParse, "PLY format line without a format", at);
+            header.format = std::string(words[1]);
+        } else if (key == "element") {
+            const auto count = words.size() == 3 ? parse_int(words[2]) : std::nullopt;
+            // Every instance takes a byte at least: a count beyond the file's size is garbage.
+            if (!count || *count < 0 || static_cast<std::uint64_t>(*count) > bytes.size()) {
+                fail(ErrorCode::kParse, "bad element count in '" + std::string(line) + "'", at);
+            }
+            for (const PlyElement& other : header.elements) {
+                if (other.name == words[1]) {
+                    fail(ErrorCode::kParse,
+                         "PLY element '" + std::string(words[1]) + "' declared twice", at);
+                }
+            }
+            header.elements.push_back(
+                {std::string(words[1]), static_cast<std::uint64_t>(*count), {}});
+        } else if (key == "property") {
+            if (header.elements.empty()) fail(ErrorCode::kParse, "property before any element", at);
+            PlyProperty p;
+            if (words.size() == 5 && words[1] == "list") {
+                p.list = true;
+                p.count_type = ply_type(words[2]);
+                p.type = ply_type(words[3]);
+                p.name = std::string(words[4]);
+                if (p.count_type == PlyType::kNone || !ply_integer(p.count_type) ||
+                    p.type == PlyType::kNone) {
+                    fail(ErrorCode::kParse, "bad list property '" + std::string(line) + "'", at);
+                }
+            } else if (words.size() == 3 && words[1] != "list") {
+                p.type = ply_type(words[1]);
+                p.name = std::string(words[2]);
+                if (p.type == PlyType::kNone) {
+                    fail(ErrorCode::kParse, "bad property type '" + std::string(words[1]) + "'",
+                         at);
+                }
+            } else {
+                fail(ErrorCode::kParse, "malformed PLY property '" + std::string(line) + "'", at);
+            }
+            PlyElement& element = header.elements.back();
+            for (const PlyProperty& other : element.properties) {
+                if (other.name == p.name) {
+                    fail(ErrorCode::kParse,
+                         "PLY property '" + p.name + "' declared twice in element '" +
+                             element.name + "'",
+                         at);
+                }
+            }
+            element.properties.push_back(std::move(p));
+        } else {
+            fail(ErrorCode::kParse, "unknown PLY header keyword '" + std::string(key) + "'", at);
+        }
+    }
+    if (!ended) fail(ErrorCode::kParse, "not a PLY file: no 'end_header'", where);
+    if (header.format != "ascii" && header.format != "binary_little_endian" &&
+        header.format != "binary_big_endian") {
+        fail(ErrorCode::kParse, "unknown PLY format '" + header.format + "'", where);
+    }
+    for (const PlyElement& e : header.elements) {
+        // Zero bytes an instance: nothing would bound its count by the file's size.
+        if (e.properties.empty())
+            fail(ErrorCode::kParse, "PLY element '" + e.name + "' has no properties", where);
+    }
+    return header;
+}
+
+PlyRoles find_ply_roles(const PlyHeader& header, const std::string& where) {
+    PlyRoles roles;
+    for (const PlyElement& e : header.elements) {
+        if (e.name == "vertex") roles.vertex = &e;
+        if (e.name == "face") roles.face = &e;
+    }
+    if (roles.vertex == nullptr || roles.face == nullptr)
+        fail(ErrorCode::kParse, "a PLY surface needs 'vertex' and 'face' elements", where);
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        const std::string name(1, static_cast<char>('x' + axis));
+        const auto& props = roles.vertex->properties;
+        const auto it = std::find_if(props.begin(), props.end(), [&](const PlyProperty& p) {
+            return p.name == name && !p.list;
+        });
+        if (it == props.end())
+            fail(ErrorCode::kParse, "PLY vertices have no '" + name + "'", where);
+        roles.xyz[axis] = static_cast<std::size_t>(it - props.begin());
+    }
+    const auto& props = roles.face->properties;
+    const auto it = std::find_if(props.begin(), props.end(), [](const PlyProperty& p) {
+        return p.list && (p.name == "vertex_indices" || p.name == "vertex_index");
+    });
+    if (it == props.end()) fail(ErrorCode::kParse, "PLY faces have no vertex_indices list", where);
+    if (!ply_integer(it->type))
+        fail(ErrorCode::kParse, "PLY vertex_indices must be of an integer type", where);
+    roles.indices = static_cast<std::size_t>(it - props.begin());
+    return roles;
+}
+
+// Collects the vertex coordinates and face corners of one instance at a time.
+struct PlySink {
+    const PlyRoles& roles;
+    SurfaceMesh& surface;
+    Polygons& polygons;
+    std::vector<std::int64_t> polygon;
+};
+
+void read_ply_ascii(const std::string& bytes, const PlyHeader& header, PlySink& sink,
+                    const std::string& where) {
+    std::size_t pos = header.body;
+    // An ASCII body is numbers: printable ASCII and blanks only.
+    for (std::size_t k = pos; k < bytes.size(); ++k) {
+        const auto c = static_cast<unsigned char>(bytes[k]);
+        if (c == 0 || c > 0x7e || (c < 0x20 && c != '\t' && c != '\n' && c != '\r')) {
+            fail(ErrorCode::kParse,
+                 c == 0 ? std::string("binary data (a NUL byte) in an ASCII PLY body")
+                        : "binary data (byte " + std::to_string(c) + ") in an ASCII PLY body",
+                 where);
+        }
+    }
+    int line_number = static_cast<int>(
+        std::count(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
+    for (const PlyElement& e : header.elements) {
+        for (std::uint64_t i = 0; i < e.count; ++i) {
+            // One instance a line; blank lines skipped.
+            std::string_view line;
+            std::vector<std::string_view> words;
+            while (words.empty()) {
+                if (pos >= bytes.size()) {
+                    fail(ErrorCode::kParse,
+                         "truncated PLY file: " + e.name + " " + std::to_string(i) + " of " +
+                             std::to_string(e.count) + " is missing",
+                         where);
+                }
+                const std::size_t nl = bytes.find('\n', pos);
+                line = std::string_view(bytes.data() + pos,
+                                        (nl == std::string::npos ? bytes.size() : nl) - pos);
+                pos = nl == std::string::npos ? bytes.size() : nl + 1;
+                ++line_number;
+                words = split_words(line);
+            }
+            const std::string at = where + ":" + std::to_string(line_number);
+            const auto malformed = [&](const std::string& why) {
+                fail(ErrorCode::kParse,
+                     "malformed PLY " + e.name + " " + std::to_string(i) + ": '" +
+                         one_line(std::string(line)) + "'" + why,
+                     at);
+            };
+            std::vector<double> values;  // the scalar properties', in order
+            std::size_t k = 0;
+            for (std::size_t prop = 0; prop < e.properties.size(); ++prop) {
+                const PlyProperty& p = e.properties[prop];
+                const auto number = [&]() {
+                    if (k >= words.size()) malformed(" (too few values)");
+                    const auto v = parse_double(words[k]);
+                    if (!v)
+                        malformed(" ('" + one_line(std::string(words[k])) + "' is not a number)");
+                    ++k;
+                    return *v;
+                };
+                if (!p.list) {
+                    values.push_back(number());
+                    continue;
+                }
+                const double n = number();
+                if (n < 0 || n != std::floor(n) || n > static_cast<double>(words.size() - k))
+                    malformed(" (bad list length)");
+                const bool keep = &e == sink.roles.face && prop == sink.roles.indices;
+                if (keep) sink.polygon.clear();
+                for (std::size_t c = 0; c < static_cast<std::size_t>(n); ++c) {
+                    const double id = number();
+                    if (keep) {
+                        if (id != std::floor(id) || std::abs(id) > 9e15)
+                            malformed(" (a vertex index that is not an integer)");
+                        sink.polygon.push_back(static_cast<std::int64_t>(id));
+                    }
+                }
+                if (keep) sink.polygons.add(sink.polygon);
+            }
+            if (k != words.size()) malformed(" (more values than properties)");
+            if (&e == sink.roles.vertex) {
+                // The scalar properties' values are in `values` in property order, lists
+                // skipped: map x, y, z's property indices to positions among the scalars.
+                std::array<double, 3> xyz{};
+                for (std::size_t axis = 0; axis < 3; ++axis) {
+                    std::size_t scalar = 0;
+                    for (std::size_t prop = 0; prop < sink.roles.xyz[axis]; ++prop)
+                        scalar += e.properties[prop].list ? 0 : 1;
+                    xyz[axis] = values[scalar];
+                }
+                sink.surface.points.emplace_back(xyz[0], xyz[1], xyz[2]);
+            }
+        }
+    }
+}
+
+void read_ply_binary(const std::string& bytes, const PlyHeader& header, PlySink& sink,
+                     const std::string& where) {
+    const bool big = header.format == "binary_big_endian";
+    std::size_t pos = header.body;
+    const auto need = [&](std::uint64_t n, const PlyElement& e, std::uint64_t i) {
+        if (n > bytes.size() - std::min(pos, bytes.size())) {
+            fail(ErrorCode::kParse,
+                 "truncated PLY file: " + e.name + " " + std::to_string(i) + " of " +
+                     std::to_string(e.count) + " is cut short",
+                 where);
+        }
+    };
+    for (const PlyElement& e : header.elements) {
+        for (std::uint64_t i = 0; i < e.count; ++i) {
+            std::array<double, 3> xyz{};
+            for (std::size_t prop = 0; prop < e.properties.size(); ++prop) {
+                const PlyProperty& p = e.properties[prop];
+                const std::size_t size = ply_size(p.type);
+                if (!p.list) {
+                    need(size, e, i);
+                    if (&e == sink.roles.vertex) {
+                        for (std::size_t axis = 0; axis < 3; ++axis) {
+                            if (sink.roles.xyz[axis] == prop)
+                                xyz[axis] = ply_binary_value(bytes, pos, p.type, big);
+                        }
+                    }
+                    pos += size;
+                    continue;
+                }
+                const std::size_t count_size = ply_size(p.count_type);
+                need(count_size, e, i);
+                const double length = ply_binary_value(bytes, pos, p.count_type, big);
+                pos += count_size;
+                if (length < 0) fail(ErrorCode::kParse, "negative PLY list length", where);
+                const auto n = static_cast<std::uint64_t>(length);
+                need(n * size, e, i);
+                if (&e == sink.roles.face && prop == sink.roles.indices) {
+                    sink.polygon.clear();
+                    for (std::uint64_t c = 0; c < n; ++c) {
+                        sink.polygon.push_back(static_cast<std::int64_t>(
+                            ply_binary_value(bytes, pos + c * size, p.type, big)));
+                    }
+                    sink.polygons.add(sink.polygon);
+                }
+                pos += n * size;
+            }
+            if (&e == sink.roles.vertex) sink.surface.points.emplace_back(xyz[0], xyz[1], xyz[2]);
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// STL
+
+// Points merged by exact coordinates, as VTK's STL reader merged them (an STL lists each
+// triangle's corners on their own).
+class PointMerger {
+  public:
+    explicit PointMerger(SurfaceMesh& surface) : surface_(surface) {}
+    std::uint32_t add(const Vec3& p) {
+        const Key key{std::bit_cast<std::uint64_t>(p.x), std::bit_cast<std::uint64_t>(p.y),
+                      std::bit_cast<std::uint64_t>(p.z)};
+        const auto [it, inserted] =
+            ids_.try_emplace(key, static_cast<std::uint32_t>(surface_.points.size()));
+        if (inserted) surface_.points.push_back(p);
+        return it->second;
+    }
+    // A triangle, unless two corners merged into one point (VTK dropped those too).
+    void add_triangle(const std::array<Vec3, 3>& corners) {
+        const std::array<std::uint32_t, 3> t = {add(corners[0]), add(corners[1]), add(corners[2])};
+        if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) surface_.triangles.push_back(t);
+    }
+
+  private:
+    using Key = std::array<std::uint64_t, 3>;
+    struct KeyHash {
+        std::size_t operator()(const Key& k) const {
+            std::uint64_t h = k[0] * 0x9E3779B97F4A7C15ull;
+            h = (h ^ (h >> 29) ^ k[1]) * 0xBF58476D1CE4E5B9ull;
+            h = (h ^ (h >> 31) ^ k[2]) * 0x94D049BB133111EBull;
+            return static_cast<std::size_t>(h ^ (h >> 32));
+        }
+    };
+    SurfaceMesh& surface_;
+    std::unordered_map<Key, std::uint32_t, KeyHash> ids_;
+};
+
+void read_stl_binary(const std::string& bytes, SurfaceMesh& surface) {
+    const auto f32 = [&](std::size_t at) {
+        std::uint32_t v = 0;
+        for (std::size_t b = 0; b < 4; ++b)
+            v |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + b])) << (8 * b);
+        return static_cast<double>(std::bit_cast<float>(v));
+    };
+    const std::size_t n = (bytes.size() - 84) / 50;
+    PointMerger merger(surface);
+    for (std::size_t t = 0; t < n; ++t) {
+        const std::size_t at = 84 + 50 * t + 12;  // past the normal
+        std::array<Vec3, 3> corners;
+        for (std::size_t c = 0; c < 3; ++c) {
+            const std::size_t v = at + 12 * c;
+            corners[c] = Vec3(f32(v), f32(v + 4), f32(v + 8));
+        }
+        merger.add_triangle(corners);
+    }
+}
+
+// solid NAME / facet normal a b c / outer loop / vertex x y z (3 or more) / endloop /
+// endfacet / ... / endsolid NAME; several solids may follow one another.
+void read_stl_ascii(const std::string& text, SurfaceMesh& surface, const std::string& path) {
+    enum class State { kOutside, kSolid, kFacet, kLoop, kLoopDone };
+    State state = State::kOutside;
+    PointMerger merger(surface);
+    std::vector<Vec3> loop;
+    int line_number = 0;
+    for (std::size_t pos = 0; pos < text.size();) {
+        const std::size_t nl = text.find('\n', pos);
+        const std::string_view line(text.data() + pos,
+                                    (nl == std::string::npos ? text.size() : nl) - pos);
+        pos = nl == std::string::npos ? text.size() : nl + 1;
+        ++line_number;
+        const auto words = split_words(line);
+        if (words.empty()) continue;
+        const std::string at = path + ":" + std::to_string(line_number);
+        const std::string_view key = words[0];
+        const auto expect = [&](bool ok, const char* what) {
+            if (!ok) {
+                fail(ErrorCode::kParse,
+                     "STL: expected " + std::string(what) + ", found '" +
+                         one_line(std::string(line)) + "'",
+                     at);
+            }
+        };
+        switch (state) {
+            case State::kOutside:
+                expect(key == "solid", "'solid'");
+                state = State::kSolid;
+                break;
+            case State::kSolid:
+                if (key == "endsolid") {
+                    state = State::kOutside;
+                    break;
+                }
+                expect(key == "facet", "'facet' or 'endsolid'");
+                state = State::kFacet;
+                break;
+            case State::kFacet:
+                expect(words.size() == 2 && key == "outer" && words[1] == "loop", "'outer loop'");
+                loop.clear();
+                state = State::kLoop;
+                break;
+            case State::kLoop:
+                if (key == "endloop") {
+                    if (loop.size() < 3) {
+                        fail(ErrorCode::kParse,
+                             "STL: a facet with " + std::to_string(loop.size()) + " vertices", at);
+                    }
+                    for (std::size_t k = 2; k < loop.size(); ++k)
+                        merger.add_triangle({loop[0], loop[k - 1], loop[k]});
+                    state = State::kLoopDone;
+                    break;
+                }
+                expect(key == "vertex" && words.size() == 4, "'vertex x y z' or 'endloop'");
+                {
+                    std::array<double, 3> xyz{};
+                    for (std::size_t c = 0; c < 3; ++c) {
+                        const auto v = parse_double(words[1 + c]);
+                        if (!v) {
+                            fail(ErrorCode::kParse,
+                                 "STL: bad number '" + one_line(std::string(words[1 + c])) + "'",
+                                 at);
+                        }
+                        xyz[c] = *v;
+                    }
+                    loop.emplace_back(xyz[0], xyz[1], xyz[2]);
+                }
+                break;
+            case State::kLoopDone:
+                expect(key == "endfacet", "'endfacet'");
+                state = State::kSolid;
+                break;
+        }
+    }
+    // A missing final "endsolid" is common (exporters truncate it); a facet cut short is not.
+    if (state != State::kOutside && state != State::kSolid)
+        fail(ErrorCode::kParse, "truncated STL file: it ends inside a facet", path);
+}
+
+}  // namespace
+
+SurfaceMesh read_ply(const fs::path& path) {
+    const std::string where = path.string();
+    const std::string bytes = read_all(path);
+    const PlyHeader header = parse_ply_header(bytes, where);
+    const PlyRoles roles = find_ply_roles(header, where);
+    SurfaceMesh surface;
+    Polygons polygons;
+    PlySink sink{roles, surface, polygons, {}};
+    if (header.format == "ascii") {
+        read_ply_ascii(bytes, header, sink, where);
+    } else {
+        read_ply_binary(bytes, header, sink, where);
+    }
+    std::vector<std::int64_t> polygon;
+    std::size_t begin = 0;
+    for (std::size_t f = 0; f < polygons.ends.size(); ++f) {
+        polygon.assign(polygons.corners.begin() + static_cast<std::ptrdiff_t>(begin),
+                       polygons.corners.begin() + static_cast<std::ptrdiff_t>(polygons.ends[f]));
+        begin = polygons.ends[f];
+        for (std::int64_t id : polygon) {
+            if (id < 0 || static_cast<std::uint64_t>(id) >= surface.points.size()) {
+                fail(ErrorCode::kInvalidMesh,
+                     "PLY face " + std::to_string(f) + " uses vertex " + std::to_string(id) +
+                         ", out of range [0, " + std::to_string(surface.points.size()) + ")",
+                     where);
+            }
+        }
+        fan_triangulate(polygon, surface.triangles, surface.points.size(), where);
+    }
+    return surface;
+}
+
+SurfaceMesh read_obj(const fs::path& path) {
+    const std::string text = read_all(path);
+    if (text.find('\0') != std::string::npos)
+        fail(ErrorCode::kParse, "not an OBJ file: binary data in a text format", path.string());
+    // '#' starts a comment, a '\' at the end of a line continues it. Indices: k > 0 is the k-th
+    // of the file (the v, vt or vn may come later in the file); k < 0 counts back from the last
+    // one read so far.
+    struct Line {
+        std::string_view text;
+        int number;
+    };
+    std::vector<Line> lines;
+    int number = 0;
+    for (std::size_t pos = 0; pos < text.size();) {
+        const std::size_t nl = text.find('\n', pos);
+        std::string_view line(text.data() + pos,
+                              (nl == std::string::npos ? text.size() : nl) - pos);
+        pos = nl == std::string::npos ? text.size() : nl + 1;
+        ++number;
+        const std::size_t hash = line.find('#');
+        if (hash != std::string_view::npos) line = line.substr(0, hash);
+        lines.push_back({line, number});
+    }
+    std::int64_t totals[3] = {0, 0, 0};  // v, vt, vn
+    for (const Line& line : lines) {
+        const auto t = split_words(line.text);
+        if (t.empty()) continue;
+        if (t[0] == "v") ++totals[0];
+        if (t[0] == "vt") ++totals[1];
+        if (t[0] == "vn") ++totals[2];
+    }
+    static constexpr const char* kWhat[3] = {"vertex", "texture coordinate", "normal"};
+    SurfaceMesh surface;
+    Polygons polygons;
+    std::vector<std::int64_t> polygon;
+    std::int64_t seen[3] = {0, 0, 0};
+    bool continued = false;  // the previous line ended in '\' inside an f, l or p
+    char element = 0;
+    for (const Line& line : lines) {
+        auto t = split_words(line.text);
+        const std::string where = path.string() + ":" + std::to_string(line.number);
+        std::size_t first = 1;
+        if (continued) {
+            first = 0;
+        } else {
+            if (t.empty()) continue;
+            if (element == 'f') polygons.add(polygon);
+            element = 0;
+            // The keywords of polygonal geometry, each a word of its own ("v0 0" is refused).
+            static constexpr std::string_view kKeywords[] = {
+                "v", "vt", "vn", "vp", "f", "l", "p", "g", "o", "s", "usemtl", "mtllib"};
+            if (std::find(std::begin(kKeywords), std::end(kKeywords), t[0]) ==
+                std::end(kKeywords)) {
+                fail(ErrorCode::kParse,
+                     "OBJ: unknown keyword '" + one_line(std::string(t[0])) + "'", where);
+            }
+            const std::size_t numbers = t[0] == "v" || t[0] == "vn" ? 3 : t[0] == "vt" ? 2 : 0;
+            if (numbers > 0) {
+                if (t.size() < 1 + numbers) {
+                    fail(ErrorCode::kParse,
+                         "OBJ: '" + std::string(t[0]) + "' needs " + std::to_string(numbers) +
+                             " numbers",
+                         where);
+                }
+                std::array<double, 3> xyz{};
+                for (std::size_t k = 1; k < t.size(); ++k) {
+                    const auto v = parse_double(t[k]);
+                    if (!v) {
+                        fail(ErrorCode::kParse,
+                             "OBJ: bad number '" + one_line(std::string(t[k])) + "' in a '" +
+                                 std::string(t[0]) + "' line",
+                             where);
+                    }
+                    if (k <= 3) xyz[k - 1] = *v;
+                }
+                if (t[0] == "v") surface.points.emplace_back(xyz[0], xyz[1], xyz[2]);
+            }
+            if (t[0] == "v") ++seen[0];
+            if (t[0] == "vt") ++seen[1];
+            if (t[0] == "vn") ++seen[2];
+            if (t[0] != "f" && t[0] != "l" && t[0] != "p") continue;
+            element = t[0][0];
+            polygon.clear();
+        }
+        continued = !t.empty() && t.back() == "\\";
+        if (continued) t.pop_back();
+        for (std::size_t k = first; k < t.size(); ++k) {
+            // v, v/vt, v//vn, v/vt/vn (l: v, v/vt; p: v); empty parts are absent.
+            const auto bad_index = [&]() {
+                fail(ErrorCode::kParse,
+                     "OBJ: bad index '" + one_line(std::string(t[k])) + "' in an '" + element +
+                         "' line",
+                     where);
+            };
+            std::string_view rest = t[k];
+            for (int part = 0; part < 3; ++part) {
+                const std::size_t slash = rest.find('/');
+                const std::string_view field = rest.substr(0, slash);
+                if (!field.empty() || part == 0) {
+                    const auto id = parse_int(field);
+                    if (!id || (element == 'p' && part > 0) || (element == 'l' && part > 1))
+                        bad_index();
+                    const bool ok = *id > 0 ? *id <= totals[part] : *id < 0 && -*id <= seen[part];
+                    if (!ok) {
+                        fail(ErrorCode::kParse,
+                             std::string("OBJ: '") + element + "' line uses " + kWhat[part] + " " +
+                                 std::to_string(*id) + " but the file has " +
+                                 std::to_string(*id < 0 ? seen[part] : totals[part]) +
+                                 (*id < 0 ? " before it" : ""),
+                             where);
+                    }
+                    if (part == 0 && element == 'f')
+                        polygon.push_back(*id > 0 ? *id - 1 : seen[0] + *id);
+                }
+                if (slash == std::string_view::npos) break;
+                rest = rest.substr(slash + 1);
+                // "1/" or "1/2/": a slash must be followed by an index ("1//3" is v//vn).
+                if (rest.empty()) bad_index();
+            }
+        }
+    }
+    if (element == 'f') polygons.add(polygon);
+    std::size_t begin = 0;
+    for (const std::size_t end : polygons.ends) {
+        polygon.assign(polygons.corners.begin() + static_cast<std::ptrdiff_t>(begin),
+                       polygons.corners.begin() + static_cast<std::ptrdiff_t>(end));
+        begin = end;
+        fan_triangulate(polygon, surface.triangles, surface.points.size(), path.string());
+    }
+    return surface;
+}
+
+SurfaceMesh read_stl(const fs::path& path) {
+    const std::string bytes = read_all(path);
+    SurfaceMesh surface;
+    // Binary: an 80-byte header, a triangle count n, n 50-byte records: the size decides
+    // (binary files' headers may start with "solid" too).
+    if (bytes.size() >= 84) {
+        std::uint32_t n = 0;
+        for (std::size_t b = 0; b < 4; ++b)
+            n |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[80 + b])) << (8 * b);
+        if (84 + 50 * static_cast<std::uint64_t>(n) == bytes.size()) {
+            read_stl_binary(bytes, surface);
+            return surface;
+        }
+    }
+    const std::size_t first = bytes.find_first_not_of(" \t\r\n");
+    if (first == std::string::npos || bytes.compare(first, 5, "solid") != 0 ||
+        bytes.find('\0') != std::string::npos) {
+        fail(ErrorCode::kParse,
+             "not an STL file: neither ASCII ('solid ...') nor binary (84 + 50 n bytes for n "
+             "triangles)",
+             path.string());
+    }
+    read_stl_ascii(bytes, surface, path.string());
+    return surface;
+}
+
+}  // namespace tr::io_detail
