@@ -32,6 +32,7 @@ class MeshFlow final : public Flow {
     }
     bool steady() const override { return steady_; }
     const PointLocator& locator() const { return tracer_.locator(); }
+    const VelocityField& velocity() const { return tracer_.velocity(); }
 
   private:
     ParticleTracer tracer_;

@@ -50,6 +50,10 @@ Result<SpotNoise> SpotNoise::create(const TetMesh& mesh, const PointLocator& loc
                               format_number(hi) + "]");
     }
     SpotNoise noise(mesh, locator, scalar, flow, options);
+    if (const auto* mesh_flow = dynamic_cast<const MeshFlow*>(&flow);
+        mesh_flow != nullptr && &mesh_flow->locator().mesh() == &mesh) {
+        noise.shared_velocity_ = &mesh_flow->velocity();
+    }
     const std::size_t num_tets = mesh.num_real_tets();
     noise.gradient_norm_.assign(mesh.num_tets(), 0.0);
     std::vector<std::uint8_t> in_band(num_tets, 0);
@@ -96,6 +100,7 @@ Result<SpotNoise> SpotNoise::create(const TetMesh& mesh, const PointLocator& loc
     noise.generations_.assign(n, 0);
     noise.ages_.resize(n);
     noise.flags_.assign(n, 1);
+    noise.cells_.assign(n, 0);
     const double t0 = options.start_time;
     parallel_for(0, n, 1024, [&](std::size_t i) {
         noise.flags_[i] = noise.seed_spot(i, t0);
@@ -116,10 +121,14 @@ std::optional<double> SpotNoise::distance_to_surface(const Vec3& p, CellId& hint
     const auto location = locator_->locate(p, hint);
     if (!location) return std::nullopt;
     hint = location->tet;
-    const Tet& tet = mesh_->tet(location->tet);
+    return distance_at(*location);
+}
+
+double SpotNoise::distance_at(const Location& location) const {
+    const Tet& tet = mesh_->tet(location.tet);
     double s = 0;
-    for (int k = 0; k < 4; ++k) s += location->barycentric[k] * scalar_->get(tet[k]);
-    const double g = gradient_norm_[location->tet];
+    for (int k = 0; k < 4; ++k) s += location.barycentric[k] * scalar_->get(tet[k]);
+    const double g = gradient_norm_[location.tet];
     const double diff = std::abs(s - options_.iso);
     if (!(g > 0)) return diff == 0 ? 0.0 : std::numeric_limits<double>::infinity();
     return diff / g;
@@ -228,15 +237,26 @@ void SpotNoise::advance() {
         const auto next = rk4_step_from(*flow_, positions_[i], velocities_[i], t0, dt, Vec3(0.0),
                                         flow_hint, false);
         std::optional<Vec3> v;
-        if (next) v = flow_->at(*next, t0 + dt, flow_hint);
-        CellId hint = hints_[i];
         std::optional<double> d;
-        if (v) d = distance_to_surface(*next, hint);
+        CellId hint = hints_[i];
+        if (next && shared_velocity_ != nullptr) {
+            // One location gives the end point's velocity and its distance to the surface (the
+            // same location the flow's lookup and the band test each found before).
+            if (const auto location = locator_->locate(*next, flow_hint)) {
+                flow_hint = hint = location->tet;
+                v = shared_velocity_->at(*location, t0 + dt);
+                d = distance_at(*location);
+            }
+        } else if (next) {
+            v = flow_->at(*next, t0 + dt, flow_hint);
+            if (v) d = distance_to_surface(*next, hint);
+        }
         if (d && *d < options_.band) {
             positions_[i] = *next;
             velocities_[i] = *v;
             hints_[i] = hint;
             flow_hints_[i] = flow_hint;
+            cells_[i] = cell_of(*next);  // here, in parallel, for the deficits below
         } else {
             flags_[i] = 1;
         }
@@ -248,7 +268,7 @@ void SpotNoise::advance() {
         if (flags_[i]) {
             out.push_back(static_cast<std::uint32_t>(i));
         } else {
-            deficit[cell_of(positions_[i])] -= 1.0;
+            deficit[static_cast<std::size_t>(cells_[i])] -= 1.0;
         }
     }
     // Water-filling: the level L >= 0 with sum max(d - L, 0) = reseeds (bisection); each

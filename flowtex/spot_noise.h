@@ -98,6 +98,8 @@ class SpotNoise {
     // |s(p) - iso| / |grad s| in the tet holding p (world units; 0 on the surface, +inf in a
     // tet where s is constant and not iso), or nothing outside the mesh. `hint`: a tet near p.
     std::optional<double> distance_to_surface(const Vec3& p, CellId& hint) const;
+    // The same at a location in mesh.
+    double distance_at(const Location& location) const;
 
   private:
     SpotNoise(const TetMesh& mesh, const PointLocator& locator, const Field& scalar,
@@ -128,9 +130,13 @@ class SpotNoise {
     int frame_ = 0;
     std::vector<Vec3> positions_, velocities_;
     std::vector<CellId> hints_, flow_hints_;
+    // The flow's velocity when the flow is a MeshFlow on mesh_ (its tets are mesh_'s: one point
+    // location serves the velocity and the band test), else null.
+    const VelocityField* shared_velocity_ = nullptr;
     std::vector<std::uint32_t> generations_;
     std::vector<int> ages_;
     std::vector<std::uint8_t> flags_;  // per spot: seeded (create), to reseed (advance)
+    std::vector<int> cells_;           // per spot moved by advance(): its reseeding cube
     // The reseeding grid: n^3 cubes of side cell_size_ from grid_lo_; per cube the band tets
     // meeting it (CSR, with cumulative volumes normalised per cube) and its target.
     Vec3 grid_lo_{0.0};

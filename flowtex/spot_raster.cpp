@@ -55,16 +55,19 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
     // Every row is written below (a band's sums are copied in, an empty band's zeroed).
     buffers.intensity.resize(pixels);
     buffers.coverage.resize(pixels);
-    buffers.depth.resize(pixels);
+    const bool depth_sums = options.depth_sums;
+    buffers.depth.resize(depth_sums ? pixels : 0);
     const std::size_t n = spots.size();
     std::vector<detail::SpotPrint>& prints = buffers.prints;
     prints.resize(n);
+    buffers.print_bands.resize(n);
     const auto positions = spots.positions();
     const auto velocities = spots.velocities();
     const auto generations = spots.generations();
     parallel_for(0, n, 2048, [&](std::size_t i) {
         detail::SpotPrint& f = prints[i];
         f.x0 = f.y0 = 0, f.x1 = f.y1 = -1;  // none
+        buffers.print_bands[i] = {1, 0};    // none
         const auto e = spot_ellipse(camera, positions[i], velocities[i], options);
         if (!e) return;
         // The bounding box of the 3-sigma ellipse.
@@ -87,15 +90,20 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
         f.x1 = std::min(clamp_pixel(e->centre.x + ex, w), w - 1);
         f.y0 = std::max(clamp_pixel(e->centre.y - ey, h), 0);
         f.y1 = std::min(clamp_pixel(e->centre.y + ey, h), h - 1);
+        if (f.x0 <= f.x1 && f.y0 <= f.y1) {
+            buffers.print_bands[i] = {static_cast<std::uint32_t>(f.y0 / kBandRows),
+                                      static_cast<std::uint32_t>(f.y1 / kBandRows)};
+        }
     });
     // Each band's spots, in spot order: band b's are band_spots[band_start[b], band_start[b + 1]).
     const int num_bands = (h + kBandRows - 1) / kBandRows;
     std::vector<std::size_t>& band_start = buffers.band_start;
     band_start.assign(static_cast<std::size_t>(num_bands) + 1, 0);
-    auto drawn = [&](const detail::SpotPrint& f) { return f.x0 <= f.x1 && f.y0 <= f.y1; };
-    for (const detail::SpotPrint& f : prints) {
-        if (!drawn(f)) continue;
-        for (int b = f.y0 / kBandRows; b <= f.y1 / kBandRows; ++b) ++band_start[b + 1];
+    // The bands each print meets (from the parallel pass above: two small words a spot read
+    // here, not its 64-byte print).
+    const auto& bands = buffers.print_bands;
+    for (const auto& [first, last] : bands) {
+        for (std::uint32_t b = first; b <= last; ++b) ++band_start[b + 1];
     }
     std::partial_sum(band_start.begin(), band_start.end(), band_start.begin());
     std::vector<std::uint32_t>& band_spots = buffers.band_spots;
@@ -103,9 +111,7 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
     {
         std::vector<std::size_t> next(band_start.begin(), band_start.end() - 1);
         for (std::size_t i = 0; i < n; ++i) {
-            const detail::SpotPrint& f = prints[i];
-            if (!drawn(f)) continue;
-            for (int b = f.y0 / kBandRows; b <= f.y1 / kBandRows; ++b) {
+            for (std::uint32_t b = bands[i][0]; b <= bands[i][1]; ++b) {
                 band_spots[next[b]++] = static_cast<std::uint32_t>(i);
             }
         }
@@ -124,13 +130,14 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
             const std::size_t count = static_cast<std::size_t>(row1 - row0 + 1) * w;
             std::fill_n(buffers.intensity.data() + from, count, 0.0f);
             std::fill_n(buffers.coverage.data() + from, count, 0.0f);
-            std::fill_n(buffers.depth.data() + from, count, 0.0f);
+            if (depth_sums) std::fill_n(buffers.depth.data() + from, count, 0.0f);
             return;
         }
-        std::vector<float> sums(3 * static_cast<std::size_t>(stride) * kBandRows, 0.0f);
+        const std::size_t band_floats = static_cast<std::size_t>(stride) * kBandRows;
+        std::vector<float> sums((depth_sums ? 3 : 2) * band_floats, 0.0f);
         float* const band_intensity = sums.data();
-        float* const band_coverage = band_intensity + static_cast<std::size_t>(stride) * kBandRows;
-        float* const band_depth = band_coverage + static_cast<std::size_t>(stride) * kBandRows;
+        float* const band_coverage = band_intensity + band_floats;
+        float* const band_depth = depth_sums ? band_coverage + band_floats : nullptr;
         spot_rows::add_spots({band_intensity, band_coverage, band_depth, stride, kApron, w, row0,
                               row1, depth ? depth->data() : nullptr},
                              prints.data(), band_spots.data() + band_start[band],
@@ -140,7 +147,7 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
             const std::size_t to = static_cast<std::size_t>(y) * w;
             std::copy_n(band_intensity + from, w, buffers.intensity.data() + to);
             std::copy_n(band_coverage + from, w, buffers.coverage.data() + to);
-            std::copy_n(band_depth + from, w, buffers.depth.data() + to);
+            if (depth_sums) std::copy_n(band_depth + from, w, buffers.depth.data() + to);
         }
     });
 }
@@ -155,7 +162,9 @@ void spot_color(const SpotRasterOptions& options, float intensity, float coverag
 
 void render_spots(const CameraFrame& camera, const SpotNoise& spots,
                   const SpotRasterOptions& options, SpotBuffers& buffers, Image& image) {
-    splat_spots(camera, spots, options, buffers);
+    SpotRasterOptions sums_only = options;  // the colouring needs no depth sums
+    sums_only.depth_sums = false;
+    splat_spots(camera, spots, sums_only, buffers);
     const int w = camera.width(), h = camera.height();
     if (image.width != w || image.height != h) image = Image(w, h);
     const Image* opaque = options.opaque_color;

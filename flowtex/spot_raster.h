@@ -5,6 +5,7 @@
 #include <core/camera.h>
 #include <core/image.h>
 
+#include <array>
 #include <cstdint>
 #include <flowtex/detail/spot_rows.h>
 #include <flowtex/spot_noise.h>
@@ -38,6 +39,9 @@ struct SpotRasterOptions {
     // centre) is nearer. Null: none. Must be of the frame's size.
     const Image* opaque_color = nullptr;
     const std::vector<double>* opaque_depth = nullptr;
+    // Whether splat_spots fills SpotBuffers::depth (a scene's depth compositing needs it; the
+    // colouring does not, and render_spots skips it: a third of the raster's stores).
+    bool depth_sums = true;
 };
 
 // The sums per pixel (row-major from the top), and the raster's working memory, kept between
@@ -46,9 +50,12 @@ struct SpotBuffers {
     int width = 0, height = 0;
     std::vector<float> intensity;  // I
     std::vector<float> coverage;   // W
-    std::vector<float> depth;      // sum w_i d_i, d_i spot i's centre's ray parameter
+    std::vector<float> depth;      // sum w_i d_i, d_i spot i's centre's ray parameter (empty
+                                   // unless SpotRasterOptions::depth_sums)
 
     std::vector<detail::SpotPrint> prints;  // per spot
+    // Per spot: the first and last band of rows its print meets (first > last: none).
+    std::vector<std::array<std::uint32_t, 2>> print_bands;
     std::vector<std::size_t> band_start;    // per band of rows: its first in band_spots
     std::vector<std::uint32_t> band_spots;  // the spots meeting each band, in spot order
 };

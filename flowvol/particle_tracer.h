@@ -39,6 +39,7 @@ class ParticleTracer {
     StepResult step(Particle& particle, double time, double dt) const;
 
     const PointLocator& locator() const { return locator_; }
+    const VelocityField& velocity() const { return velocity_; }
 
   private:
     const VelocityField& velocity_;

@@ -10,6 +10,21 @@ namespace {
 constexpr double kInsideTolerance = -1e-12;  // barycentric coordinates this negative count in
 constexpr int kMaxWalk = 4096;               // steps before the walk gives up on a hint
 
+// PointLocator::barycentric's body, inlined into the walk (the tracers' hot loop).
+inline std::array<double, 4> barycentric_in(const TetMesh& mesh, CellId t, const Vec3& p) {
+    const Tet& v = mesh.tet(t);
+    const Vec3& d = mesh.point(v[3]);
+    // Edges from d: w_k is the volume of the tet with p in place of vertex k over the tet's,
+    // orient3d(a, b, c, d) = (a - d) . ((b - d) x (c - d)); the three cross products shared.
+    const Vec3 a = mesh.point(v[0]) - d, b = mesh.point(v[1]) - d, c = mesh.point(v[2]) - d;
+    const Vec3 q = p - d;
+    const Vec3 bc = glm::cross(b, c), ca = glm::cross(c, a), ab = glm::cross(a, b);
+    const double inverse_volume = 1.0 / glm::dot(a, bc);
+    const double w0 = glm::dot(q, bc) * inverse_volume, w1 = glm::dot(q, ca) * inverse_volume;
+    const double w2 = glm::dot(q, ab) * inverse_volume;
+    return {w0, w1, w2, 1.0 - w0 - w1 - w2};
+}
+
 }  // namespace
 
 PointLocator::PointLocator(const TetMesh& mesh, const FaceAdjacency& adjacency)
@@ -52,17 +67,7 @@ PointLocator::PointLocator(const TetMesh& mesh, const FaceAdjacency& adjacency)
 }
 
 std::array<double, 4> PointLocator::barycentric(CellId t, const Vec3& p) const {
-    const Tet& v = mesh_.tet(t);
-    const Vec3& d = mesh_.point(v[3]);
-    // Edges from d: w_k is the volume of the tet with p in place of vertex k over the tet's,
-    // orient3d(a, b, c, d) = (a - d) . ((b - d) x (c - d)); the three cross products shared.
-    const Vec3 a = mesh_.point(v[0]) - d, b = mesh_.point(v[1]) - d, c = mesh_.point(v[2]) - d;
-    const Vec3 q = p - d;
-    const Vec3 bc = glm::cross(b, c), ca = glm::cross(c, a), ab = glm::cross(a, b);
-    const double volume = glm::dot(a, bc);
-    const double w0 = glm::dot(q, bc) / volume, w1 = glm::dot(q, ca) / volume;
-    const double w2 = glm::dot(q, ab) / volume;
-    return {w0, w1, w2, 1.0 - w0 - w1 - w2};
+    return barycentric_in(mesh_, t, p);
 }
 
 std::size_t PointLocator::grid_index(const Vec3& p) const {
@@ -75,7 +80,7 @@ std::size_t PointLocator::grid_index(const Vec3& p) const {
 
 bool PointLocator::walk(const Vec3& p, CellId t, Location& out) const {
     for (int step = 0; step < kMaxWalk && t != kNoCell && !mesh_.is_virtual(t); ++step) {
-        const auto w = barycentric(t, p);
+        const auto w = barycentric_in(mesh_, t, p);
         int worst = 0;
         for (int k = 1; k < 4; ++k) {
             if (w[k] < w[worst]) worst = k;

@@ -34,6 +34,9 @@ class PointLocator {
     // Barycentric coordinates of p in tet t (negative outside).
     std::array<double, 4> barycentric(CellId t, const Vec3& p) const;
 
+    // The mesh it locates in: hints are its tet ids.
+    const TetMesh& mesh() const { return mesh_; }
+
   private:
     bool walk(const Vec3& p, CellId start, Location& out) const;
     std::size_t grid_index(const Vec3& p) const;

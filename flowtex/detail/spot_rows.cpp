@@ -19,8 +19,9 @@ struct CentreX {
 };
 
 // n pixels of a row of a spot from pixel x0, the row's q(dx) =
-// qa dx^2 + b dx + c; where `hidden` is given, only where hidden[i] is beyond `depth`.
-template <bool kHidden>
+// qa dx^2 + b dx + c; where `hidden` is given, only where hidden[i] is beyond `depth`; the depth
+// sum only with kDepth.
+template <bool kHidden, bool kDepth>
 TR_FORCE_INLINE void add_row(float* __restrict intensity, float* __restrict coverage,
                              float* __restrict depth_sum, const double* __restrict hidden, int n,
                              int x0, CentreX centre, float qa, float b, float c, float amplitude,
@@ -34,7 +35,7 @@ TR_FORCE_INLINE void add_row(float* __restrict intensity, float* __restrict cove
         if constexpr (kHidden) w = depth < hidden[i] ? w : 0.0f;
         intensity[i] += amplitude * w;
         coverage[i] += w;
-        depth_sum[i] += depth * w;
+        if constexpr (kDepth) depth_sum[i] += depth * w;
     }
 }
 
@@ -57,7 +58,7 @@ TR_FORCE_INLINE bool small_spot(const detail::SpotPrint& f) {
     return (0.5 * f.qa + std::abs(f.qb)) * square <= 80.0 && 0.5 * f.qc * square <= 80.0;
 }
 
-template <bool kHidden>
+template <bool kHidden, bool kDepth>
 TR_FORCE_INLINE void add_small_spot(const BandSums& band, const detail::SpotPrint& f) {
     const int ya = std::max(f.y0, band.row0), yb = std::min(f.y1, band.row1);
     if (ya > yb) return;
@@ -85,7 +86,7 @@ TR_FORCE_INLINE void add_small_spot(const BandSums& band, const detail::SpotPrin
             static_cast<std::size_t>(y - band.row0) * band.stride + band.apron + xa;
         float* __restrict intensity = band.intensity + at;
         float* __restrict coverage = band.coverage + at;
-        float* __restrict depth_sum = band.depth + at;
+        float* __restrict depth_sum = kDepth ? band.depth + at : nullptr;
         const double* __restrict hidden =
             kHidden ? band.hidden + static_cast<std::size_t>(y) * band.width + xa : nullptr;
         for (int i = 0; i < whole; ++i) {
@@ -96,15 +97,15 @@ TR_FORCE_INLINE void add_small_spot(const BandSums& band, const detail::SpotPrin
             p[i] *= step[i];
             intensity[i] += amplitude * w;
             coverage[i] += w;
-            depth_sum[i] += depth * w;
+            if constexpr (kDepth) depth_sum[i] += depth * w;
         }
     }
 }
 
-template <bool kHidden>
+template <bool kHidden, bool kDepth>
 TR_FORCE_INLINE void add_spot(const BandSums& band, const detail::SpotPrint& f) {
     if (small_spot(f)) {
-        add_small_spot<kHidden>(band, f);
+        add_small_spot<kHidden, kDepth>(band, f);
         return;
     }
     const double qa = f.qa, qb = f.qb, qc = f.qc;
@@ -135,10 +136,10 @@ TR_FORCE_INLINE void add_spot(const BandSums& band, const detail::SpotPrint& f) 
             static_cast<std::size_t>(y - band.row0) * band.stride + band.apron + xa;
         const double* hidden =
             kHidden ? band.hidden + static_cast<std::size_t>(y) * band.width + xa : nullptr;
-        add_row<kHidden>(band.intensity + at, band.coverage + at, band.depth + at, hidden, xb - xa,
-                         xa, CentreX(f.cx), static_cast<float>(qa),
-                         static_cast<float>(2.0 * qb * dy), static_cast<float>(qc * dy * dy),
-                         f.amplitude, f.depth);
+        add_row<kHidden, kDepth>(
+            band.intensity + at, band.coverage + at, kDepth ? band.depth + at : nullptr, hidden,
+            xb - xa, xa, CentreX(f.cx), static_cast<float>(qa), static_cast<float>(2.0 * qb * dy),
+            static_cast<float>(qc * dy * dy), f.amplitude, f.depth);
     }
 }
 
@@ -158,10 +159,11 @@ TR_VECTOR_CLONES void add_spots(const BandSums& band, const detail::SpotPrint* p
     constexpr std::size_t kAhead = 8;
     for (std::size_t k = 0; k < count; ++k) {
         if (k + kAhead < count) __builtin_prefetch(&prints[which[k + kAhead]]);
+        const detail::SpotPrint& f = prints[which[k]];
         if (band.hidden) {
-            add_spot<true>(band, prints[which[k]]);
+            band.depth ? add_spot<true, true>(band, f) : add_spot<true, false>(band, f);
         } else {
-            add_spot<false>(band, prints[which[k]]);
+            band.depth ? add_spot<false, true>(band, f) : add_spot<false, false>(band, f);
         }
     }
 }

@@ -25,7 +25,8 @@ struct SpotPrint {
 
 namespace tr::spot_rows {
 
-// A band of rows of the sums (intensity I, coverage W, depth-weighted sum D), `stride` floats a
+// A band of rows of the sums (intensity I, coverage W, depth-weighted sum D, or none when
+// `depth` is null), `stride` floats a
 // row with `apron` spare pixels either side of the picture's `width` (pixel x of row y at
 // (y - row0) stride + apron + x), and the opaque geometry's depths of the picture (row-major,
 // `width` a row), or null.
