@@ -38,6 +38,15 @@ std::vector<std::string_view> split_words(std::string_view line) {
     return words;
 }
 
+// The line at `pos` (without its '\n'), `pos` moved past it.
+std::string_view next_line(const std::string& text, std::size_t& pos) {
+    const std::size_t nl = text.find('\n', pos);
+    const std::string_view line(text.data() + pos,
+                                (nl == std::string::npos ? text.size() : nl) - pos);
+    pos = nl == std::string::npos ? text.size() : nl + 1;
+    return line;
+}
+
 // A number that is the whole word ("+1" and "1e400" too: the latter becomes inf, which
 // validate_surface refuses); nullopt otherwise.
 std::optional<double> parse_double(std::string_view word) {
@@ -178,10 +187,7 @@ PlyHeader parse_ply_header(const std::string& bytes, const std::string& where) {
     bool ended = false;
     int line_number = 0;
     for (std::size_t pos = 0; pos < bytes.size();) {
-        const std::size_t nl = bytes.find('\n', pos);
-        const std::string_view line(bytes.data() + pos,
-                                    (nl == std::string::npos ? bytes.size() : nl) - pos);
-        pos = nl == std::string::npos ? bytes.size() : nl + 1;
+        const std::string_view line = next_line(bytes, pos);
         ++line_number;
         const std::string at = where + ":" + std::to_string(line_number);
         for (char ch : line) {
@@ -330,10 +336,7 @@ void read_ply_ascii(const std::string& bytes, const PlyHeader& header, PlySink& 
                              std::to_string(e.count) + " is missing",
                          where);
                 }
-                const std::size_t nl = bytes.find('\n', pos);
-                line = std::string_view(bytes.data() + pos,
-                                        (nl == std::string::npos ? bytes.size() : nl) - pos);
-                pos = nl == std::string::npos ? bytes.size() : nl + 1;
+                line = next_line(bytes, pos);
                 ++line_number;
                 words = split_words(line);
             }
@@ -508,10 +511,7 @@ void read_stl_ascii(const std::string& text, SurfaceMesh& surface, const std::st
     std::vector<Vec3> loop;
     int line_number = 0;
     for (std::size_t pos = 0; pos < text.size();) {
-        const std::size_t nl = text.find('\n', pos);
-        const std::string_view line(text.data() + pos,
-                                    (nl == std::string::npos ? text.size() : nl) - pos);
-        pos = nl == std::string::npos ? text.size() : nl + 1;
+        const std::string_view line = next_line(text, pos);
         ++line_number;
         const auto words = split_words(line);
         if (words.empty()) continue;
@@ -628,10 +628,7 @@ SurfaceMesh read_obj(const fs::path& path) {
     std::vector<Line> lines;
     int number = 0;
     for (std::size_t pos = 0; pos < text.size();) {
-        const std::size_t nl = text.find('\n', pos);
-        std::string_view line(text.data() + pos,
-                              (nl == std::string::npos ? text.size() : nl) - pos);
-        pos = nl == std::string::npos ? text.size() : nl + 1;
+        std::string_view line = next_line(text, pos);
         ++number;
         const std::size_t hash = line.find('#');
         if (hash != std::string_view::npos) line = line.substr(0, hash);
