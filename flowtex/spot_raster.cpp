@@ -41,8 +41,10 @@ std::optional<SpotEllipse> spot_ellipse(const CameraFrame& camera, const Vec3& p
     }
     e.sigma_long = std::min(options.sigma_px + options.stretch * length,
                             std::max(options.max_sigma_px, options.sigma_px));
-    const Ray ray = camera.ray(c.x, c.y);
-    e.depth = glm::dot(point - ray.origin, ray.direction);
+    if (options.depth_sums || options.opaque_depth != nullptr) {
+        const Ray ray = camera.ray(c.x, c.y);
+        e.depth = glm::dot(point - ray.origin, ray.direction);
+    }
     return e;
 }
 

@@ -71,7 +71,8 @@ void spot_color(const SpotRasterOptions& options, float intensity, float coverag
 struct SpotEllipse {
     glm::dvec2 centre{0.0}, direction{1.0, 0.0};
     double sigma_long = 0, sigma_short = 0;
-    double depth = 0;  // the centre's ray parameter
+    double depth = 0;  // the centre's ray parameter (0 when `options` need none: no depth sums
+                       // and no opaque depth)
 };
 std::optional<SpotEllipse> spot_ellipse(const CameraFrame& camera, const Vec3& point,
                                         const Vec3& velocity, const SpotRasterOptions& options);

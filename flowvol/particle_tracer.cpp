@@ -15,13 +15,6 @@ ParticleTracer::ParticleTracer(const TetMesh& mesh, const FaceAdjacency& adjacen
                                const VelocityField& velocity)
     : velocity_(velocity), locator_(mesh, adjacency) {}
 
-std::optional<Vec3> ParticleTracer::velocity_at(const Vec3& p, double time, CellId& hint) const {
-    const auto where = locator_.locate(p, hint);
-    if (!where) return std::nullopt;
-    hint = where->tet;
-    return velocity_.at(*where, time);
-}
-
 StepResult ParticleTracer::step(Particle& particle, double time, double dt) const {
     if (!particle.active) return StepResult::kLeftDomain;
     CellId hint = particle.tet;

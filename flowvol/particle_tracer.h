@@ -31,7 +31,12 @@ class ParticleTracer {
 
     // The velocity at p at `time`, or nothing outside the mesh; `hint` is updated to the tet
     // found.
-    std::optional<Vec3> velocity_at(const Vec3& p, double time, CellId& hint) const;
+    std::optional<Vec3> velocity_at(const Vec3& p, double time, CellId& hint) const {
+        const auto where = locator_.locate(p, hint);
+        if (!where) return std::nullopt;
+        hint = where->tet;
+        return velocity_.at(*where, time);
+    }
 
     // One RK4 step from `time` to time + dt (dt > 0). A step that would leave the mesh is cut where
     // the particle's path crosses the boundary (bisection on the Euler path, to 1e-9 of dt) and the

@@ -2,28 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <variant>
 
 namespace tr {
 namespace {
 
-constexpr double kInsideTolerance = -1e-12;  // barycentric coordinates this negative count in
-constexpr int kMaxWalk = 4096;               // steps before the walk gives up on a hint
-
-// PointLocator::barycentric's body, inlined into the walk (the tracers' hot loop).
-inline std::array<double, 4> barycentric_in(const TetMesh& mesh, CellId t, const Vec3& p) {
-    const Tet& v = mesh.tet(t);
-    const Vec3& d = mesh.point(v[3]);
-    // Edges from d: w_k is the volume of the tet with p in place of vertex k over the tet's,
-    // orient3d(a, b, c, d) = (a - d) . ((b - d) x (c - d)); the three cross products shared.
-    const Vec3 a = mesh.point(v[0]) - d, b = mesh.point(v[1]) - d, c = mesh.point(v[2]) - d;
-    const Vec3 q = p - d;
-    const Vec3 bc = glm::cross(b, c), ca = glm::cross(c, a), ab = glm::cross(a, b);
-    const double inverse_volume = 1.0 / glm::dot(a, bc);
-    const double w0 = glm::dot(q, bc) * inverse_volume, w1 = glm::dot(q, ca) * inverse_volume;
-    const double w2 = glm::dot(q, ab) * inverse_volume;
-    return {w0, w1, w2, 1.0 - w0 - w1 - w2};
-}
+constexpr int kMaxWalk = 4096;  // steps before the walk gives up on a hint
 
 }  // namespace
 
@@ -66,10 +49,6 @@ PointLocator::PointLocator(const TetMesh& mesh, const FaceAdjacency& adjacency)
     }
 }
 
-std::array<double, 4> PointLocator::barycentric(CellId t, const Vec3& p) const {
-    return barycentric_in(mesh_, t, p);
-}
-
 std::size_t PointLocator::grid_index(const Vec3& p) const {
     const Vec3 q = (p - bounds_.lo) / cell_size_;
     const int x = std::clamp(static_cast<int>(q.x), 0, nx_ - 1);
@@ -80,7 +59,7 @@ std::size_t PointLocator::grid_index(const Vec3& p) const {
 
 bool PointLocator::walk(const Vec3& p, CellId t, Location& out) const {
     for (int step = 0; step < kMaxWalk && t != kNoCell && !mesh_.is_virtual(t); ++step) {
-        const auto w = barycentric_in(mesh_, t, p);
+        const auto w = barycentric(t, p);
         int worst = 0;
         for (int k = 1; k < 4; ++k) {
             if (w[k] < w[worst]) worst = k;
@@ -95,7 +74,7 @@ bool PointLocator::walk(const Vec3& p, CellId t, Location& out) const {
     return false;
 }
 
-std::optional<Location> PointLocator::locate(const Vec3& p, CellId hint) const {
+std::optional<Location> PointLocator::locate_slow(const Vec3& p, CellId hint) const {
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return std::nullopt;
     const double pad = pad_;
     if (p.x < bounds_.lo.x - pad || p.y < bounds_.lo.y - pad || p.z < bounds_.lo.z - pad ||
@@ -113,24 +92,6 @@ std::optional<Location> PointLocator::locate(const Vec3& p, CellId hint) const {
         }
     }
     return std::nullopt;
-}
-
-Vec3 interpolate_vector(const TetMesh& mesh, const Field& field, const Location& location) {
-    const Tet& tet = mesh.tet(location.tet);
-    const auto n = static_cast<std::size_t>(field.num_components);
-    // The values' type resolved once, not per component.
-    return std::visit(
-        [&](const auto& values) {
-            Vec3 v(0.0);
-            for (int k = 0; k < 4; ++k) {
-                const auto* at = values.data() + static_cast<std::size_t>(tet[k]) * n;
-                for (int c = 0; c < 3; ++c) {
-                    v[c] += location.barycentric[k] * static_cast<double>(at[c]);
-                }
-            }
-            return v;
-        },
-        field.values);
 }
 
 }  // namespace tr

@@ -51,8 +51,8 @@ Result<VelocityField> VelocityField::unsteady(const TetMesh& mesh, std::vector<F
     return v;
 }
 
-Vec3 VelocityField::at(const Location& location, double time) const {
-    if (samples_.size() == 1 || time <= times_.front()) {
+Vec3 VelocityField::at_unsteady(const Location& location, double time) const {
+    if (time <= times_.front()) {
         return interpolate_vector(*mesh_, *samples_.front(), location);
     }
     if (time >= times_.back()) return interpolate_vector(*mesh_, *samples_.back(), location);

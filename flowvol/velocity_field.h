@@ -38,10 +38,14 @@ class VelocityField {
     // The velocity at a location at `time`, linear in space (barycentric) and in time; times
     // outside [first_time, last_time] take the nearest sample. Cost: O(1) (a binary search
     // over the times).
-    Vec3 at(const Location& location, double time) const;
+    Vec3 at(const Location& location, double time) const {
+        if (samples_.size() == 1) return interpolate_vector(*mesh_, *samples_.front(), location);
+        return at_unsteady(location, time);
+    }
 
   private:
     VelocityField() = default;
+    Vec3 at_unsteady(const Location& location, double time) const;
 
     const TetMesh* mesh_ = nullptr;
     std::vector<Field> owned_;

@@ -73,15 +73,21 @@ TR_FORCE_INLINE void add_small_spot(const BandSums& band, const detail::SpotPrin
     const auto qc = static_cast<float>(f.qc);
     const float amplitude = f.amplitude, depth = f.depth;
     const auto dy0 = static_cast<float>(ya + 0.5 - f.cy);
-    float p[kSmallSpot], step[kSmallSpot];
+    // Per column its offset, P_i and S_i; per row R_j: the exponentials in vector loops.
+    float dxs[kSmallSpot], p[kSmallSpot], step[kSmallSpot], rows[kSmallSpot];
     for (int i = 0; i < whole; ++i) {
         const float dx = centre.offset(xa + i);
+        dxs[i] = dx;
         p[i] = exp_bounded(-0.5f * qa * dx * dx - qb * dx * dy0);
         step[i] = exp_bounded(-qb * dx);
     }
+    for (int j = 0; j <= yb - ya; ++j) {
+        const float dy = dy0 + static_cast<float>(j);
+        rows[j] = exp_nonpositive(-0.5f * qc * dy * dy);
+    }
     for (int y = ya; y <= yb; ++y) {
         const float dy = dy0 + static_cast<float>(y - ya);
-        const float r = exp_nonpositive(-0.5f * qc * dy * dy), c = qc * dy * dy, b = 2.0f * qb * dy;
+        const float r = rows[y - ya], c = qc * dy * dy, b = 2.0f * qb * dy;
         const std::size_t at =
             static_cast<std::size_t>(y - band.row0) * band.stride + band.apron + xa;
         float* __restrict intensity = band.intensity + at;
@@ -90,7 +96,7 @@ TR_FORCE_INLINE void add_small_spot(const BandSums& band, const detail::SpotPrin
         const double* __restrict hidden =
             kHidden ? band.hidden + static_cast<std::size_t>(y) * band.width + xa : nullptr;
         for (int i = 0; i < whole; ++i) {
-            const float dx = centre.offset(xa + i);
+            const float dx = dxs[i];
             const float q = (qa * dx + b) * dx + c;
             float w = q < 9.0f ? p[i] * r : 0.0f;
             if constexpr (kHidden) w = depth < hidden[i] ? w : 0.0f;
