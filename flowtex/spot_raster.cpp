@@ -10,7 +10,9 @@
 namespace tr {
 namespace {
 
-constexpr int kBandRows = 16;
+// Rows a band: a spot (about 10 rows high) pays its set-up again in each band it meets; 32 rows
+// rendered 17% faster than 16 on 2 threads (bench/spotnoise_bench, 100k spots at 512^2).
+constexpr int kBandRows = 32;
 constexpr double kCutQ = 9.0;  // 3 sigma
 constexpr int kApron = 8;      // a band's rows' spare pixels either side (whole vectors)
 
