@@ -275,13 +275,15 @@ void SpotNoise::advance() {
     // cube gets floor(max(d - L, 0)), the rest spread evenly over the cubes with d > L.
     reseed_cells_.assign(out.size(), -1);
     const double r = static_cast<double>(out.size());
+    // Only cubes with a target can have a deficit above 0 (the others' is 0 less their spots):
+    // the sums and the eligible cubes run over those, in cube order, as over all.
     auto above = [&](double level) {
         double sum = 0;
-        for (const double d : deficit) sum += std::max(d - level, 0.0);
+        for (const std::uint32_t c : target_cells_) sum += std::max(deficit[c] - level, 0.0);
         return sum;
     };
     double lo = 0, hi = 1;
-    for (const double d : deficit) hi = std::max(hi, d);
+    for (const std::uint32_t c : target_cells_) hi = std::max(hi, deficit[c]);
     if (above(0) > r) {
         for (int iteration = 0; iteration < 40; ++iteration) {
             const double mid = 0.5 * (lo + hi);
@@ -291,7 +293,7 @@ void SpotNoise::advance() {
     const double level = hi > 1 && above(0) > r ? hi : 0.0;
     std::size_t j = 0;
     std::vector<int> eligible;
-    for (std::size_t c = 0; c < deficit.size(); ++c) {
+    for (const std::uint32_t c : target_cells_) {
         if (!(deficit[c] > level)) continue;
         eligible.push_back(static_cast<int>(c));
         const auto n = static_cast<std::size_t>(deficit[c] - level);
@@ -412,6 +414,10 @@ void SpotNoise::build_grid() {
         for (std::size_t c = 0; c < cells; ++c) {
             target_[c] = volume[c] / total * static_cast<double>(positions_.size());
         }
+    }
+    target_cells_.clear();
+    for (std::size_t c = 0; c < cells; ++c) {
+        if (target_[c] > 0) target_cells_.push_back(static_cast<std::uint32_t>(c));
     }
 }
 

@@ -147,6 +147,7 @@ class SpotNoise {
     std::vector<double> cell_cdf_;
     std::vector<std::uint8_t> box_sampling_;  // per cube: draw from the cube, not its tets
     std::vector<double> target_;  // expected spots per cube: count x its share of the band
+    std::vector<std::uint32_t> target_cells_;  // the cubes whose target is above 0, in order
     std::vector<int> reseed_cells_;
     std::size_t reseeded_ = 0;
 };
