@@ -42,12 +42,13 @@ UnstructuredMesh read_mfem(const fs::path& path, const ProgressRange& progress);
 SurfaceMesh read_vtk_surface(const fs::path& path, const std::string& ext);
 SurfaceMesh read_off(const fs::path& path);
 SurfaceMesh read_poly(const fs::path& path);
-// PLY, OBJ and STL by hand (surface_readers.cpp). Polygons fan-triangulated; every corner
-// checked against the points (kInvalidMesh naming the face); malformed lines kParse naming
-// path:line. PLY: ASCII or binary, either byte order, any elements and properties (vertex x, y,
-// z and the face's vertex_indices or vertex_index list kept). OBJ: v and f (v, v/vt, v//vn,
-// v/vt/vn, negative = relative; '\' continues a line); every index must name a v, vt or vn
-// the file has; unknown keywords refused. STL: binary when the size is 84 + 50 n, else ASCII
+// PLY, OBJ and STL by hand (ply_reader.cpp, obj_reader.cpp, stl_reader.cpp). Polygons
+// fan-triangulated; every corner checked against the points (kInvalidMesh naming the face);
+// malformed lines kParse naming path:line. PLY: ASCII or binary, either byte order, any elements
+// and properties (vertex x, y, z and the face's vertex_indices or vertex_index list kept). OBJ: v
+// and f (v, v/vt, v//vn, v/vt/vn, negative = relative; '\' continues a line); every index must name
+// a v, vt or vn the file has; unknown keywords refused. STL: binary when the size is 84 + 50 n,
+// else ASCII
 // ('solid ...'); points merged by exact coordinates, triangles that merge to a line dropped.
 // Cost: O(file size).
 SurfaceMesh read_ply(const fs::path& path);

@@ -176,7 +176,7 @@ TEST(IoTextFuzzFindings, PlyAsciiLineShortOfProperties) {
 
 // fuzz_surface, seventeenth run (3.14M executions): an ASCII PLY whose face element has a list
 // property besides vertex_indices ('property list uchar int vertex_3') segfaulted VTK 9.1's ASCII
-// reader (ascii_get_element), so the pre-check refused it. Our own reader (surface_readers.cpp)
+// reader (ascii_get_element), so the pre-check refused it. Our own reader (ply_reader.cpp)
 // reads such lists past their values: the triangle is the vertex_indices one.
 TEST(IoTextFuzzFindings, PlyAsciiExtraListsAreReadPastTheirValues) {
     TempDir dir;
@@ -382,7 +382,8 @@ TEST(IoTextFuzzFindings, PlyHeaderEndsAtAnEndHeaderLine) {
 // crashed past every pre-check (SEGV in strlen; in vtkCell::Initialize on a header whose
 // 'property list' line ran into the next element's), and its OBJ reader on a file our check
 // passed (SEGV in vtkOBJReader::RequestData). PLY, OBJ and STL are now read by our own parsers
-// (io/detail/surface_readers.cpp): the PLY header is refused naming its line, the OBJ reads.
+// (io/detail/ply_reader.cpp, obj_reader.cpp, stl_reader.cpp): the PLY header is refused naming its
+// line, the OBJ reads.
 TEST(IoTextFuzzFindings, SurfacesVtkCrashedOnReadByOurParsers) {
     TempDir dir;
     write_file(dir / "crash.ply",

@@ -1,7 +1,7 @@
-// Our PLY, OBJ and STL readers (io/detail/surface_readers.cpp): one unit cube written in every
-// form each format allows (byte orders, value types, element order, extra elements and lists,
-// index forms, continued lines, merged STL corners) reads back as the same closed surface, with
-// its volume, orientation and corner coordinates exact.
+// Our PLY, OBJ and STL readers (io/detail/ply_reader.cpp, obj_reader.cpp, stl_reader.cpp): one unit
+// cube written in every form each format allows (byte orders, value types, element order, extra
+// elements and lists, index forms, continued lines, merged STL corners) reads back as the same
+// closed surface, with its volume, orientation and corner coordinates exact.
 
 #include <io/read_surface.h>
 #include <tests/io/io_test_util.h>
