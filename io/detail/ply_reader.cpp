@@ -102,7 +102,8 @@ struct PlyElement {
 struct PlyRoles {
     const PlyElement* vertex = nullptr;
     const PlyElement* face = nullptr;
-    std::array<std::size_t, 3> xyz{};
+    std::array<std::size_t, 3> xyz{};         // x, y, z's property indices
+    std::array<std::size_t, 3> xyz_scalar{};  // ... and their places among the scalar ones
     std::size_t indices = 0;
 };
 
@@ -222,6 +223,8 @@ PlyRoles find_ply_roles(const PlyHeader& header, const std::string& where) {
         if (it == props.end())
             fail(ErrorCode::kParse, "PLY vertices have no '" + name + "'", where);
         roles.xyz[axis] = static_cast<std::size_t>(it - props.begin());
+        roles.xyz_scalar[axis] = static_cast<std::size_t>(
+            std::count_if(props.begin(), it, [](const PlyProperty& p) { return !p.list; }));
     }
     const auto& props = roles.face->properties;
     const auto it = std::find_if(props.begin(), props.end(), [](const PlyProperty& p) {
@@ -257,11 +260,13 @@ void read_ply_ascii(const std::string& bytes, const PlyHeader& header, PlySink& 
     }
     int line_number = static_cast<int>(
         std::count(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
+    std::vector<std::string_view> words;  // reused from line to line
+    std::vector<double> values;           // the scalar properties', in order
     for (const PlyElement& e : header.elements) {
         for (std::uint64_t i = 0; i < e.count; ++i) {
             // One instance a line; blank lines skipped.
             std::string_view line;
-            std::vector<std::string_view> words;
+            words.clear();
             while (words.empty()) {
                 if (pos >= bytes.size()) {
                     fail(ErrorCode::kParse,
@@ -271,16 +276,15 @@ void read_ply_ascii(const std::string& bytes, const PlyHeader& header, PlySink& 
                 }
                 line = next_line(bytes, pos);
                 ++line_number;
-                words = split_words(line);
+                split_words(line, words);
             }
-            const std::string at = where + ":" + std::to_string(line_number);
             const auto malformed = [&](const std::string& why) {
                 fail(ErrorCode::kParse,
                      "malformed PLY " + e.name + " " + std::to_string(i) + ": '" +
                          one_line(std::string(line)) + "'" + why,
-                     at);
+                     where + ":" + std::to_string(line_number));
             };
-            std::vector<double> values;  // the scalar properties', in order
+            values.clear();
             std::size_t k = 0;
             for (std::size_t prop = 0; prop < e.properties.size(); ++prop) {
                 const PlyProperty& p = e.properties[prop];
@@ -313,16 +317,8 @@ void read_ply_ascii(const std::string& bytes, const PlyHeader& header, PlySink& 
             }
             if (k != words.size()) malformed(" (more values than properties)");
             if (&e == sink.roles.vertex) {
-                // The scalar properties' values are in `values` in property order, lists
-                // skipped: map x, y, z's property indices to positions among the scalars.
-                std::array<double, 3> xyz{};
-                for (std::size_t axis = 0; axis < 3; ++axis) {
-                    std::size_t scalar = 0;
-                    for (std::size_t prop = 0; prop < sink.roles.xyz[axis]; ++prop)
-                        scalar += e.properties[prop].list ? 0 : 1;
-                    xyz[axis] = values[scalar];
-                }
-                sink.surface.points.emplace_back(xyz[0], xyz[1], xyz[2]);
+                const auto& at = sink.roles.xyz_scalar;
+                sink.surface.points.emplace_back(values[at[0]], values[at[1]], values[at[2]]);
             }
         }
     }

@@ -1,7 +1,7 @@
 #pragma once
-// Text helpers shared by the hand-written surface readers (ply_reader.cpp, obj_reader.cpp,
-// stl_reader.cpp): words of a line, lines of a text, whole-word numbers, polygons kept until
-// every point is known.
+// Text helpers shared by the hand-written readers (text_readers.cpp, ply_reader.cpp,
+// obj_reader.cpp, stl_reader.cpp): words of a line, lines of a text, whole-word numbers, polygons
+// kept until every point is known.
 
 #include <charconv>
 #include <cstdint>
@@ -17,8 +17,9 @@ inline bool is_space(char c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
-inline std::vector<std::string_view> split_words(std::string_view line) {
-    std::vector<std::string_view> words;
+// The blank-separated words of a line into `words` (cleared first; reused between lines).
+inline void split_words(std::string_view line, std::vector<std::string_view>& words) {
+    words.clear();
     std::size_t p = 0;
     while (p < line.size()) {
         while (p < line.size() && is_space(line[p])) ++p;
@@ -27,6 +28,11 @@ inline std::vector<std::string_view> split_words(std::string_view line) {
         if (q > p) words.push_back(line.substr(p, q - p));
         p = q;
     }
+}
+
+inline std::vector<std::string_view> split_words(std::string_view line) {
+    std::vector<std::string_view> words;
+    split_words(line, words);
     return words;
 }
 

@@ -3,6 +3,7 @@
 
 #include <io/detail/common.h>
 #include <io/detail/readers.h>
+#include <io/detail/surface_text.h>
 
 #include <algorithm>
 #include <charconv>
@@ -39,14 +40,7 @@ class LineReader {
             }
             tokens.clear();
             if (separator == '\0') {
-                std::size_t p = 0;
-                while (p < line.size()) {
-                    while (p < line.size() && is_blank(line[p])) ++p;
-                    std::size_t q = p;
-                    while (q < line.size() && !is_blank(line[q])) ++q;
-                    if (q > p) tokens.push_back(line.substr(p, q - p));
-                    p = q;
-                }
+                split_words(line, tokens);
             } else {
                 if (trim(line).empty()) continue;
                 std::size_t p = 0;
@@ -127,12 +121,9 @@ class LineReader {
     }
 
   private:
-    static bool is_blank(char ch) {
-        return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\v' || ch == '\f';
-    }
     static std::string_view trim(std::string_view s) {
-        while (!s.empty() && (is_blank(s.front()) || s.front() == '"')) s.remove_prefix(1);
-        while (!s.empty() && (is_blank(s.back()) || s.back() == '"')) s.remove_suffix(1);
+        while (!s.empty() && (is_space(s.front()) || s.front() == '"')) s.remove_prefix(1);
+        while (!s.empty() && (is_space(s.back()) || s.back() == '"')) s.remove_suffix(1);
         return s;
     }
 
