@@ -10,6 +10,8 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <type_traits>
+#include <vector>
 
 namespace tr {
 namespace {
@@ -41,7 +43,8 @@ double longest_edge(const TetMesh& mesh) {
     return longest;
 }
 
-Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
+Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats,
+                                  std::vector<float>* alpha) {
     const auto start = std::chrono::steady_clock::now();
     // Preconditions whose violation would read or write out of bounds (a bug in the caller).
     TR_CHECK(in.mesh != nullptr && in.shader != nullptr && in.camera != nullptr);
@@ -67,8 +70,23 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
 
     Image image(w, h, Vec3f(in.background));
     if (in.opaque_color) image = *in.opaque_color;
+    // The volume's opacity per pixel, when asked for: composited with the same over operator.
+    if (alpha) alpha->assign(static_cast<std::size_t>(w) * h, 0.0f);
+    float* const opacity = alpha ? alpha->data() : nullptr;
     std::atomic<std::size_t> fragments{0};
-    parallel_for(0, bins.num_tiles(), 1, [&](std::size_t tile) {
+    // One tile; `with_alpha` (std::true_type or std::false_type) decides at compile time whether
+    // the opacity is composited too, so that the per-fragment loops have no branch for it.
+    auto render_tile = [&](std::size_t tile, auto with_alpha) {
+        constexpr bool kWithAlpha = decltype(with_alpha)::value;
+        // The premultiplied over operator: a fragment in front of what the pixel holds.
+        auto composite = [&](std::size_t pixel, const ShadedSegment& seg) {
+            Vec3f& dst = image.pixels[pixel];
+            dst = seg.color + (1.0f - seg.alpha) * dst;
+            if constexpr (kWithAlpha) {
+                float& a = opacity[pixel];
+                a = seg.alpha + (1.0f - seg.alpha) * a;
+            }
+        };
         TileRays rays;  // the tile's rays, computed once
         tile_rays(bins, tile, camera, rays);
         const int px0 = rays.x0, py0 = rays.y0;
@@ -93,9 +111,7 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                     max_depth.empty() ? std::numeric_limits<double>::infinity() : max_depth[pixel];
                 double t_in, t_out, s_in, s_out;
                 if (!cell.segment(ray, limit, t_in, t_out, s_in, s_out)) return;
-                const ShadedSegment seg = in.shader->shade(s_in, s_out, t_out - t_in);
-                Vec3f& dst = image.pixels[pixel];
-                dst = seg.color + (1.0f - seg.alpha) * dst;
+                composite(pixel, in.shader->shade(s_in, s_out, t_out - t_in));
                 ++tile_fragments;
             };
             if (shirley_tuchman && !bins.behind_eye[index]) {
@@ -164,9 +180,7 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                                 }
                             }
                             if (!(u > 0)) continue;
-                            const ShadedSegment seg = in.shader->shade(sf, sb, u);
-                            Vec3f& dst = image.pixels[pixel];
-                            dst = seg.color + (1.0f - seg.alpha) * dst;
+                            composite(pixel, in.shader->shade(sf, sb, u));
                             ++tile_fragments;
                         }
                     }
@@ -186,14 +200,18 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats) {
                 });
             const std::size_t n = static_cast<std::size_t>(count);
             in.shader->shade(std::span(queries, n), std::span(shaded, n));
-            for (std::size_t f = 0; f < n; ++f) {
-                Vec3f& dst = image.pixels[pixels[f]];
-                dst = shaded[f].color + (1.0f - shaded[f].alpha) * dst;
-            }
+            for (std::size_t f = 0; f < n; ++f) composite(pixels[f], shaded[f]);
             tile_fragments += n;
         }
         fragments += tile_fragments;
-    });
+    };
+    if (opacity) {
+        parallel_for(0, bins.num_tiles(), 1,
+                     [&](std::size_t tile) { render_tile(tile, std::true_type{}); });
+    } else {
+        parallel_for(0, bins.num_tiles(), 1,
+                     [&](std::size_t tile) { render_tile(tile, std::false_type{}); });
+    }
     if (stats) {
         stats->cells_drawn = bins.cells_drawn;
         stats->fragments = fragments.load();

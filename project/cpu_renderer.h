@@ -52,7 +52,17 @@ struct RenderInputs {
 // as a wrong call would read or write out of bounds): mesh, shader and camera set; one scalar
 // per mesh point; every order id a real tet (< mesh.num_real_tets()); opaque colour and depth,
 // when given, the image's size. Cost: O(cells + fragments), threaded over screen tiles.
-Image render_projected_tetrahedra(const RenderInputs& inputs, RenderStats* stats = nullptr);
+//
+// `alpha`, when given, is resized to width x height (row-major, row 0 at the top, as Image) and
+// receives per pixel the opacity of the volume drawn there, 1 - the product of its fragments'
+// transmittances (composited alongside the colour by the same over operator; 0 where no
+// fragment was drawn): the returned picture is then, up to float rounding, the picture the same
+// call returns over black with no opaque colour plus (1 - alpha) times the background or opaque
+// colour — the premultiplied RGBA a compositor blends. An opaque depth without an opaque
+// colour stops the segments there (a rank's part over transparent black). Asking for alpha
+// changes no bit of the picture; without it the raster costs what it did.
+Image render_projected_tetrahedra(const RenderInputs& inputs, RenderStats* stats = nullptr,
+                                  std::vector<float>* alpha = nullptr);
 
 // The longest segment a ray can have through any real tet (its longest edge): what a
 // SegmentShader's tables must cover.

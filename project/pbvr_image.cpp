@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <vector>
 
 namespace tr {
 namespace {
@@ -52,7 +53,7 @@ struct VolumeState {
 }  // namespace
 
 Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& options,
-                        ImagePbvrStats* stats) {
+                        ImagePbvrStats* stats, std::vector<float>* alpha_out) {
     const auto start = Clock::now();
     const CameraFrame& camera = *scene.camera;
     const int w = camera.width(), h = camera.height();
@@ -78,6 +79,10 @@ Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& option
     Image image(w, h, Vec3f(scene.background));
     if (scene.opaque_color) image = *scene.opaque_color;
     const Image behind = image;
+    if (alpha_out) alpha_out->assign(static_cast<std::size_t>(w) * h, 0.0f);
+    // Repetitions with a particle are counted per pixel for the control variate and, without
+    // it, for the opacity asked for (the fraction of repetitions that hide what lies behind).
+    const bool count_hits = options.control_variate || alpha_out != nullptr;
     const std::size_t num_tiles = volumes.empty() ? 0 : volumes[0].bins.num_tiles();
     std::atomic<std::size_t> total_fragments{0}, total_particles{0};
     // The lattices' generators for a whole pass and for a shorter last one.
@@ -154,11 +159,11 @@ Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& option
         thread_local std::vector<Vec3> weighted_color;
         thread_local std::vector<int> hits;
         constexpr std::size_t kTilePixels = kFragmentTile * kFragmentTile;
+        if (count_hits) hits.assign(kTilePixels, 0);
         if (options.control_variate) {
             log_transparency.assign(kTilePixels, 0.0);
             weight.assign(kTilePixels, 0.0);
             weighted_color.assign(kTilePixels, Vec3(0.0));
-            hits.assign(kTilePixels, 0);
             for (std::size_t i = 0; i < fragments.size(); ++i) {
                 const Fragment& f = fragments[i];
                 const Vec3 c = mean_colors ? Vec3(mean_color[i])
@@ -257,7 +262,7 @@ Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& option
                             total += back;
                             continue;
                         }
-                        if (options.control_variate) ++hits[local];
+                        if (count_hits) ++hits[local];
                         const std::uint32_t i = static_cast<std::uint32_t>(e);
                         if (mean_colors) {
                             total += Vec3(mean_color[i]);
@@ -281,6 +286,9 @@ Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& option
                     static_cast<std::size_t>(y - rays.y0) * kFragmentTile + (x - rays.x0);
                 Vec3 mean(sum[local * 3], sum[local * 3 + 1], sum[local * 3 + 2]);
                 mean /= static_cast<double>(repetitions);
+                // The fraction of repetitions with a particle: what lies behind shows in the
+                // others, so the picture is (colours) + (1 - hit fraction) behind.
+                double opacity = count_hits ? static_cast<double>(hits[local]) / repetitions : 0;
                 if (options.control_variate && weight[local] > 0) {
                     // The fraction of repetitions with a particle has a known expectation,
                     // 1 - (the transparency of all the segments): its deviation times the
@@ -291,8 +299,13 @@ Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& option
                         static_cast<double>(hits[local]) / repetitions - expected_hits;
                     const Vec3 beta = weighted_color[local] / weight[local] - Vec3(behind.at(x, y));
                     mean -= deviation * beta;
+                    // What lies behind now weighs (1 - hit fraction) + deviation = T exactly.
+                    opacity = expected_hits;
                 }
                 image.at(x, y) = Vec3f(mean);
+                if (alpha_out) {
+                    (*alpha_out)[static_cast<std::size_t>(y) * w + x] = static_cast<float>(opacity);
+                }
             }
         }
     });

@@ -40,6 +40,7 @@
 #include <project/pbvr_sampling.h>
 
 #include <cstdint>
+#include <vector>
 
 namespace tr {
 
@@ -63,7 +64,18 @@ struct ImagePbvrStats {
 // R x (the sum of the opacities along a ray) per pixel; memory per worker 8 bytes per pixel of
 // a 32 x 32 tile per repetition (up to 1024 repetitions at a time: 8 MB) plus the tile's
 // fragments.
+//
+// `alpha`, when given, is resized to width x height (row-major, row 0 at the top, as Image) and
+// receives per pixel the weight the estimator gives to what lies behind, subtracted from 1: with
+// the control variate the known opacity 1 - T (T the product of (1 - alpha) over the pixel's
+// segments: the picture is C + T b exactly), without it the fraction of repetitions with a
+// particle on the pixel; 0 where no segment is. The returned picture is then, up to float
+// rounding, the picture the same call (same seed) returns over black with no opaque colour
+// plus (1 - alpha) times the background or opaque colour, and that picture over black is
+// itself an unbiased estimate of the premultiplied colour (premultiplied RGBA for a
+// compositor). An opaque depth without an opaque colour stops the segments there. Asking for
+// alpha changes no bit of the picture.
 Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& options,
-                        ImagePbvrStats* stats = nullptr);
+                        ImagePbvrStats* stats = nullptr, std::vector<float>* alpha = nullptr);
 
 }  // namespace tr

@@ -211,14 +211,26 @@ class ParticleBuffer {
     }
 
     // Adds each pixel's mean over its sub-pixels (the particle's colour, or what lies behind)
-    // to `sum` (3 doubles per pixel).
-    void resolve_into(std::vector<double>& sum) const {
+    // to `sum` (3 doubles per pixel) and, when `coverage` is given (one double per pixel), the
+    // fraction of its sub-pixels that hold a particle to `coverage`.
+    void resolve_into(std::vector<double>& sum, std::vector<double>* coverage = nullptr) const {
+        if (coverage) {
+            resolve<true>(sum, coverage->data());
+        } else {
+            resolve<false>(sum, nullptr);
+        }
+    }
+
+  private:
+    template <bool kCoverage>
+    void resolve(std::vector<double>& sum, double* coverage) const {
         const int w = view_.camera->width(), h = view_.camera->height();
         const int level = view_.subpixel_level;
         const float inverse_subpixels = 1.0f / static_cast<float>(level * level);
         parallel_for(0, static_cast<std::size_t>(h), 8, [&](std::size_t y) {
             for (int x = 0; x < w; ++x) {
                 Vec3f pixel(0.0f);
+                [[maybe_unused]] int covered = 0;
                 const Vec3f& back = behind_.at(x, static_cast<int>(y));
                 for (int j = 0; j < level; ++j) {
                     const std::size_t row = (y * level + j) * static_cast<std::size_t>(sub_width_);
@@ -227,15 +239,18 @@ class ParticleBuffer {
                             slots_[row + static_cast<std::size_t>(x) * level + i].load(
                                 std::memory_order_relaxed);
                         pixel += e == kNoParticle ? back : particle_color(e);
+                        if constexpr (kCoverage) covered += e != kNoParticle;
                     }
                 }
                 double* out = &sum[(y * w + x) * 3];
                 for (int k = 0; k < 3; ++k) out[k] += pixel[k] * inverse_subpixels;
+                if constexpr (kCoverage) {
+                    coverage[y * w + x] += static_cast<double>(covered) / (level * level);
+                }
             }
         });
     }
 
-  private:
     bool offer(int ix, int iy, double t, std::uint64_t entry) {
         if (ix >= sub_width_ || iy >= sub_height_) return false;
         if (scene_.opaque_depth) {
@@ -445,7 +460,8 @@ double expected_candidates(const VolumeScene& scene, const ObjectPbvrOptions& op
 }
 
 Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& options,
-                         ObjectPbvrStats* stats, const ObjectPbvrPlan* plan) {
+                         ObjectPbvrStats* stats, const ObjectPbvrPlan* plan,
+                         std::vector<float>* alpha) {
     const CameraFrame& camera = *scene.camera;
     const int w = camera.width(), h = camera.height();
     const int level = std::max(1, options.subpixel_level);
@@ -455,6 +471,9 @@ Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& opti
     const ObjectPbvrPlan own = plan ? ObjectPbvrPlan{} : plan_object_pbvr(scene, options);
     const std::vector<std::vector<float>>& bounds = plan ? plan->bounds : own.bounds;
     std::vector<double> sum(static_cast<std::size_t>(w) * h * 3, 0.0);
+    // With alpha asked for: per pixel the sub-pixels holding a particle, summed over repetitions
+    // as fractions (what lies behind shows in the others).
+    std::vector<double> coverage(alpha ? static_cast<std::size_t>(w) * h : 0, 0.0);
     std::atomic<std::size_t> candidates{0}, particles{0}, projected{0};
     double generate_ms = 0, resolve_ms = 0;
     for (int r = 0; r < repetitions; ++r) {
@@ -479,7 +498,7 @@ Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& opti
         }
         generate_ms += ms_since(start);
         start = Clock::now();
-        buffer.resolve_into(sum);
+        buffer.resolve_into(sum, alpha ? &coverage : nullptr);
         resolve_ms += ms_since(start);
     }
     Image image(w, h);
@@ -487,6 +506,12 @@ Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& opti
         image.pixels[p] = Vec3f(static_cast<float>(sum[3 * p] / repetitions),
                                 static_cast<float>(sum[3 * p + 1] / repetitions),
                                 static_cast<float>(sum[3 * p + 2] / repetitions));
+    }
+    if (alpha) {
+        alpha->resize(coverage.size());
+        for (std::size_t p = 0; p < coverage.size(); ++p) {
+            (*alpha)[p] = static_cast<float>(coverage[p] / repetitions);
+        }
     }
     if (stats) {
         stats->candidates = candidates.load();

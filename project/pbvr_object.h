@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 namespace tr {
 
@@ -87,10 +88,18 @@ inline constexpr double kMaxObjectCandidates = 268435456.0;
 // most kMaxParticleSamples (the pipeline checks these and says so). Cost per repetition: the
 // particles (the sum over cells of rho's integral, about pixels x L^2 x the optical depth of a
 // ray, times the thinning overhead) plus O(pixels x L^2); memory 8 bytes per sub-pixel plus
-// 24 bytes per pixel.
+// 24 bytes per pixel (32 with alpha).
 // `plan`, when given, is plan_object_pbvr(scene, options) (not computed again).
+// `alpha`, when given, is resized to width x height (row-major, row 0 at the top, as Image) and
+// receives per pixel the fraction of its sub-pixels, over all repetitions, that hold a particle
+// (0 where none ever does): the returned picture is then, up to float rounding, the picture the
+// same call (same seed) returns over black with no opaque colour plus (1 - alpha) times the
+// background or opaque colour, and that picture over black is itself an unbiased estimate of
+// the premultiplied colour (premultiplied RGBA for a compositor). An opaque depth without an
+// opaque colour drops the particles behind it. Asking for alpha changes no bit of the picture.
 Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& options,
-                         ObjectPbvrStats* stats = nullptr, const ObjectPbvrPlan* plan = nullptr);
+                         ObjectPbvrStats* stats = nullptr, const ObjectPbvrPlan* plan = nullptr,
+                         std::vector<float>* alpha = nullptr);
 
 // Particles kept between pictures (paper, 3.2: "we need to change the particle radius on the
 // condition that the particle density stays the same"). Each particle keeps its position, its

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <vector>
 
 namespace tr {
 namespace {
@@ -108,7 +109,8 @@ void integrate_overlap(const std::vector<VolumeState>& volumes, const Segment* c
 
 }  // namespace
 
-Image render_segment_merge(const VolumeScene& scene, SegmentMergeStats* stats) {
+Image render_segment_merge(const VolumeScene& scene, SegmentMergeStats* stats,
+                           std::vector<float>* alpha) {
     const auto start = Clock::now();
     const CameraFrame& camera = *scene.camera;
     const int w = camera.width(), h = camera.height();
@@ -129,6 +131,8 @@ Image render_segment_merge(const VolumeScene& scene, SegmentMergeStats* stats) {
                                                   : std::span<const double>();
     Image image(w, h, Vec3f(scene.background));
     if (scene.opaque_color) image = *scene.opaque_color;
+    if (alpha) alpha->assign(static_cast<std::size_t>(w) * h, 0.0f);
+    float* const opacity = alpha ? alpha->data() : nullptr;
     const std::size_t num_tiles = volumes.empty() ? 0 : volumes[0].bins.num_tiles();
     std::atomic<std::size_t> total_fragments{0}, total_overlaps{0};
 
@@ -255,6 +259,10 @@ Image render_segment_merge(const VolumeScene& scene, SegmentMergeStats* stats) {
             const int y = rays.y0 + static_cast<int>(p / kFragmentTile);
             Vec3f& out = image.at(x, y);
             out = Vec3f(pixel.color + pixel.transparency * Vec3(out));
+            if (opacity) {
+                opacity[static_cast<std::size_t>(y) * w + x] =
+                    static_cast<float>(1.0 - pixel.transparency);
+            }
         }
         total_overlaps += overlaps;
     });

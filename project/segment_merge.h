@@ -19,6 +19,7 @@
 #include <project/volume_scene.h>
 
 #include <cstddef>
+#include <vector>
 
 namespace tr {
 
@@ -32,6 +33,14 @@ struct SegmentMergeStats {
 // camera's size); every volume has a shader (VolumeData::shader) of its transfer function.
 // Cost: O(fragments log fragments per pixel) plus the overlap intervals' integration; memory
 // per worker: one tile's segments (about 24 bytes each).
-Image render_segment_merge(const VolumeScene& scene, SegmentMergeStats* stats = nullptr);
+//
+// `alpha`, when given, is resized to width x height (row-major, row 0 at the top, as Image) and
+// receives per pixel the opacity of the volumes there, 1 - the transparency left after the
+// pixel's pieces (0 where there are none): the returned picture is then, up to float rounding,
+// the picture the same call returns over black with no opaque colour plus (1 - alpha) times the
+// background or opaque colour (premultiplied RGBA for a compositor). An opaque depth without an
+// opaque colour stops the segments there. Asking for alpha changes no bit of the picture.
+Image render_segment_merge(const VolumeScene& scene, SegmentMergeStats* stats = nullptr,
+                           std::vector<float>* alpha = nullptr);
 
 }  // namespace tr

@@ -1,21 +1,25 @@
 // The exact segment merge: one volume gives the projected-tetrahedra picture; two meshes that
 // fill the same space with different tets give the picture of one mesh whose medium is their
 // sum (checked against the reference ray caster, an independent code path); a mesh with
-// tangled cells needs no order; the picture is the same whatever the thread count.
+// tangled cells needs no order; the picture is the same whatever the thread count; the alpha it
+// gives composes the picture over anything behind from the one over black.
 #include <core/parallel.h>
 #include <mesh/face_adjacency.h>
 #include <mesh/tetrahedralize.h>
 #include <project/colormap.h>
 #include <project/cpu_renderer.h>
+#include <project/opaque_geometry.h>
 #include <project/reference_raycaster.h>
 #include <project/segment_merge.h>
 #include <sort/visibility_sort.h>
 #include <tests/mesh/mixed_grid.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
+#include <tests/project/alpha_check.h>
 #include <tests/support/image_check.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace tr {
@@ -131,6 +135,116 @@ TEST(SegmentMerge, SamePictureWhateverTheThreadCount) {
     set_thread_count(0);
     EXPECT_EQ(
         std::memcmp(one.pixels.data(), three.pixels.data(), one.pixels.size() * sizeof(Vec3f)), 0);
+}
+
+// Two meshes overlapping in [0, 3]^3: a mixed box whose opacity ramps from none (x = 0) to
+// opaque (x = 3), and a faint uniform box [0, 2]^3 in the same space, seen nearly down z so that
+// the ray through (2.6, 1.5, 1.5) crosses the mixed box where it is opaque; and a tilted opaque
+// plane through them.
+struct AlphaScene {
+    TetMesh a_mesh = mixed_box(3, 4);
+    TetMesh b_mesh = testing::uniform_box(2, 2.0);
+    std::vector<float> a_scalar = sample(a_mesh, linear), b_scalar = sample(b_mesh, linear);
+    TransferFunction a_tf =
+        TransferFunction::create({{0.0, {0.9, 0.3, 0.1}}, {1.0, {0.95, 0.9, 0.2}}},
+                                 {{0.0, 0.0}, {0.5, 0.1}, {1.0, 0.95}}, 0.25)
+            .value();
+    TransferFunction b_tf = TransferFunction::create(
+                                {{0.0, {0.1, 0.3, 0.9}}, {1.0, {0.2, 0.8, 0.9}}}, {{0.0, 0.1}}, 1.0)
+                                .value();
+    SegmentShader a_shader{a_tf, Integrator::kPreintegrated, longest_edge(a_mesh)};
+    SegmentShader b_shader{b_tf, Integrator::kPreintegrated, longest_edge(b_mesh)};
+    CameraFrame frame{testing::camera_at({3.5, 2.5, 14}, {1.5, 1.5, 1.5}, false, 30), 64, 64};
+    SurfaceMesh plane = [] {
+        SurfaceMesh p;  // z = 0.5 + 0.3 x
+        p.points = {{-1, -1, 0.2}, {4, -1, 1.7}, {4, 4, 1.7}, {-1, 4, 0.2}};
+        p.triangles = {{0, 1, 2}, {0, 2, 3}};
+        return p;
+    }();
+    OpaqueLayer layer = render_opaque({{&plane, Vec3(0.2, 0.9, 0.3)}}, frame, Vec3(0.4, 0.35, 0.3));
+
+    VolumeScene scene(const Vec3& background, bool opaque_depth, bool opaque_color) const {
+        VolumeScene s;
+        s.volumes.push_back({&a_mesh, a_scalar, &a_tf, &a_shader});
+        s.volumes.push_back({&b_mesh, b_scalar, &b_tf, &b_shader});
+        s.camera = &frame;
+        s.background = background;
+        if (opaque_depth) s.opaque_depth = &layer.depth;
+        if (opaque_color) s.opaque_color = &layer.color;
+        return s;
+    }
+};
+
+// The picture over a non-black background, and over the opaque layer's colour, is the picture
+// over black (with the layer's depth, no colour: how a rank renders its part) plus (1 - alpha)
+// times what is behind; alpha lies in [0, 1], is exactly 0 where the rays miss the volumes,
+// above 0.99 where they are opaque, and the opaque layer lowers it.
+TEST(SegmentMerge, AlphaComposesThePictureOverAnyBackgroundFromTheOneOverBlack) {
+    const AlphaScene s;
+    ASSERT_GT(s.layer.pixels_covered, 1000u);
+    const Vec3 background(0.3, 0.6, 0.9);
+    std::vector<float> alpha, alpha_b, alpha_cut;
+    SegmentMergeStats stats;
+    const Image black = render_segment_merge(s.scene(Vec3(0.0), false, false), &stats, &alpha);
+    EXPECT_GT(stats.overlap_intervals, 1000u);  // the overlap's integration is composited too
+    const Image over_b = render_segment_merge(s.scene(background, false, false), nullptr, &alpha_b);
+    ASSERT_EQ(alpha.size(), black.pixels.size());
+    EXPECT_TRUE(testing::bit_identical(alpha, alpha_b));
+    const testing::AlphaCheck c =
+        testing::check_alpha(black, alpha, over_b, Image(64, 64, Vec3f(background)));
+    const Image black_cut =
+        render_segment_merge(s.scene(Vec3(0.0), true, false), nullptr, &alpha_cut);
+    const Image over_layer = render_segment_merge(s.scene(Vec3(0.0), true, true));
+    const testing::AlphaCheck cut =
+        testing::check_alpha(black_cut, alpha_cut, over_layer, s.layer.color);
+    std::printf(
+        "[ merge alpha ] largest difference %.2g over a background, %.2g over opaque geometry; "
+        "alpha in [%g, %g]; %zu pixels 0, %zu partial, %zu above 0.99\n",
+        c.largest_difference, cut.largest_difference, c.min_alpha, c.max_alpha,
+        c.pixels_transparent, c.pixels_partial, c.pixels_opaque);
+    // Measured 7.2e-8 and 8.1e-8 (float rounding of the picture and of alpha); bound 1e-6.
+    EXPECT_LE(c.largest_difference, 1e-6) << "at " << c.worst_x << ", " << c.worst_y;
+    EXPECT_LE(cut.largest_difference, 1e-6) << "at " << cut.worst_x << ", " << cut.worst_y;
+    EXPECT_GE(std::min(c.min_alpha, cut.min_alpha), 0.0f);
+    EXPECT_LE(std::max(c.max_alpha, cut.max_alpha), 1.0f);
+    EXPECT_GT(c.pixels_partial, 200u);
+    EXPECT_GT(c.pixels_opaque, 100u);
+    std::size_t missed = 0, lowered = 0;
+    for (int j = 0; j < 64; ++j) {
+        for (int i = 0; i < 64; ++i) {
+            const std::size_t p = static_cast<std::size_t>(j) * 64 + i;
+            if (testing::misses_box(s.frame.pixel_ray(i, j), 0.0, 3.0, 1e-3)) {
+                ++missed;
+                EXPECT_EQ(alpha[p], 0.0f) << i << ", " << j;
+                EXPECT_EQ(alpha_cut[p], 0.0f) << i << ", " << j;
+            }
+            EXPECT_LE(alpha_cut[p], alpha[p] + 1e-6f) << i << ", " << j;
+            lowered += alpha_cut[p] < alpha[p] - 0.05f;
+        }
+    }
+    std::printf("[ alpha ] %zu pixels missed, %zu lowered by the opaque layer\n", missed, lowered);
+    // Measured 3047 pixels missed, 359 lowered (the plane cuts segments).
+    EXPECT_GT(missed, 2500u);
+    EXPECT_GT(lowered, 250u);
+    const Vec3 q = s.frame.project(Vec3(2.6, 1.5, 1.5));
+    EXPECT_GT(alpha[static_cast<std::size_t>(q.y) * 64 + static_cast<int>(q.x)], 0.99f);
+}
+
+TEST(SegmentMerge, AskingForAlphaChangesNoBitOfThePicture) {
+    const AlphaScene s;
+    const Vec3 background(0.3, 0.6, 0.9);
+    std::vector<float> alpha;
+    for (bool depth : {false, true}) {
+        for (bool color : {false, true}) {
+            SCOPED_TRACE(std::string(depth ? "opaque depth" : "") +
+                         (color ? " opaque colour" : ""));
+            const VolumeScene scene = s.scene(background, depth, color);
+            const Image without = render_segment_merge(scene);
+            const Image with = render_segment_merge(scene, nullptr, &alpha);
+            EXPECT_LT(psnr(without, Image(64, 64, Vec3f(background))), 30.0);  // not blank
+            EXPECT_TRUE(testing::bit_identical(without, with));
+        }
+    }
 }
 
 }  // namespace

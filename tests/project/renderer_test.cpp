@@ -1,6 +1,6 @@
 // The CPU renderer: seams, accuracy of each integrator against the reference ray caster and of
 // the default against the exact one (optically thin and thick cells), thread determinism, the
-// camera inside the mesh, the preconditions it checks.
+// camera inside the mesh, the alpha it gives for compositing, the preconditions it checks.
 #include <core/config.h>
 #include <core/parallel.h>
 #include <mesh/face_adjacency.h>
@@ -10,13 +10,16 @@
 #include <project/reference_raycaster.h>
 #include <sort/visibility_sort.h>
 #include <tests/mesh/mixed_grid.h>
+#include <tests/project/alpha_check.h>
 #include <tests/support/image_check.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -47,7 +50,8 @@ Fixture make_fixture(int n, float (*f)(const Vec3&), std::uint32_t seed = 1) {
 }
 
 Image render(const Fixture& fx, const TransferFunction& tf, const CameraFrame& frame,
-             Integrator integrator, const Vec3& background, RenderStats* stats = nullptr) {
+             Integrator integrator, const Vec3& background, RenderStats* stats = nullptr,
+             std::vector<float>* alpha = nullptr) {
     VisibilitySorter sorter;
     std::vector<CellId> order;
     sorter.sort(fx.mesh, fx.adjacency, SortView::from_camera(frame), SortMethod::kMpvo, order);
@@ -59,7 +63,7 @@ Image render(const Fixture& fx, const TransferFunction& tf, const CameraFrame& f
     in.shader = &shader;
     in.camera = &frame;
     in.background = background;
-    return render_projected_tetrahedra(in, stats);
+    return render_projected_tetrahedra(in, stats, alpha);
 }
 
 Camera looking_at(const Vec3& eye, const Vec3& focal, bool parallel, double scale) {
@@ -284,13 +288,18 @@ TEST(Renderer, BitIdenticalWhateverTheThreadCount) {
     for (Integrator integrator :
          {Integrator::kExact, Integrator::kPreintegrated, Integrator::kExpTexture}) {
         SCOPED_TRACE(std::string(integrator_name(integrator)));
+        std::vector<float> alpha_one, alpha_two, alpha_seven;
         set_thread_count(1);
-        const Image one = render(fx, tf, frame, integrator, Vec3(0.1));
+        const Image one = render(fx, tf, frame, integrator, Vec3(0.1), nullptr, &alpha_one);
         set_thread_count(2);
-        const Image two = render(fx, tf, frame, integrator, Vec3(0.1));
+        const Image two = render(fx, tf, frame, integrator, Vec3(0.1), nullptr, &alpha_two);
         set_thread_count(7);
-        const Image seven = render(fx, tf, frame, integrator, Vec3(0.1));
+        const Image seven = render(fx, tf, frame, integrator, Vec3(0.1), nullptr, &alpha_seven);
         set_thread_count(0);
+        // The alpha asked for as well (not all zero, which would be identical trivially).
+        EXPECT_GT(*std::max_element(alpha_one.begin(), alpha_one.end()), 0.5f);
+        EXPECT_TRUE(testing::bit_identical(alpha_one, alpha_two));
+        EXPECT_TRUE(testing::bit_identical(alpha_one, alpha_seven));
         ASSERT_EQ(one.pixels.size(), two.pixels.size());
         // Not a blank picture (which would be identical trivially).
         EXPECT_LT(psnr(one, Image(one.width, one.height, Vec3f(0.1f))), 30.0);
@@ -359,6 +368,172 @@ TEST(Renderer, OpaqueGeometryCutsEverySegmentAtItsDepth) {
             parallel ? "ortho" : "persp", worst, checked);
         EXPECT_GT(checked, 500);  // 1936 orthographic, 622 in perspective
         EXPECT_LT(worst, 2e-6);   // measured 2.1e-7 and 1.6e-7 (single precision)
+    }
+}
+
+// A box [0, 4]^3 whose scalar runs with x from 0 to 1 and whose opacity ramps from none to
+// 0.9 per half unit: rays near x = 0 are nearly transparent, rays near x = 4 opaque, and the
+// pictures' margins hold no volume.
+float ramp_in_x(const Vec3& p) { return static_cast<float>(p.x / 4.0); }
+
+TransferFunction ramp_tf() {
+    return TransferFunction::create({{0.0, {0.1, 0.2, 0.9}}, {1.0, {0.9, 0.3, 0.1}}},
+                                    {{0.0, 0.0}, {0.5, 0.05}, {1.0, 0.9}}, 0.5)
+        .value();
+}
+
+// The cameras the alpha tests look with: nearly down z, so that the ray through (3.5, 2, 2)
+// crosses the whole box where it is opaque (x in [3.1, 3.9]: optical depth above 6).
+const Camera kAlphaCameras[] = {
+    looking_at({4.5, 3.5, 16}, {2, 2, 2}, true, 3.2),  // orthographic
+    [] {
+        Camera c = looking_at({5, 0.5, 14}, {2, 2, 2}, false, 1);
+        c.view_angle = 30;
+        return c;
+    }(),  // perspective
+};
+
+// The picture, and when `alpha` is given its alpha, over `background` or an opaque layer (its
+// depth always, its colour when `with_color`).
+Image render_alpha(const Fixture& fx, const SegmentShader& shader, const CameraFrame& frame,
+                   const std::vector<CellId>& order, const Vec3& background,
+                   const OpaqueLayer* layer, bool with_color, std::vector<float>* alpha) {
+    RenderInputs in;
+    in.mesh = &fx.mesh;
+    in.scalar = fx.scalar;
+    in.order = order;
+    in.shader = &shader;
+    in.camera = &frame;
+    in.background = background;
+    if (layer) {
+        in.opaque_depth = &layer->depth;
+        if (with_color) in.opaque_color = &layer->color;
+    }
+    return render_projected_tetrahedra(in, nullptr, alpha);
+}
+
+// For each integrator and camera: the picture over a non-black background, and over an opaque
+// layer's colour (a tilted plane through the box), is the picture over black (with the layer's
+// depth, no colour: how a rank renders its part) plus (1 - alpha) times what is behind. Alpha
+// lies in [0, 1], is exactly 0 where the rays miss the box, above 0.99 where the box is opaque,
+// and the opaque layer lowers it.
+TEST(Renderer, AlphaComposesThePictureOverAnyBackgroundFromTheOneOverBlack) {
+    const Fixture fx = make_fixture(4, ramp_in_x, 5);
+    const TransferFunction tf = ramp_tf();
+    SurfaceMesh plane;  // z = 1 + 0.3 x
+    plane.points = {{-1, -1, 0.7}, {5, -1, 2.5}, {5, 5, 2.5}, {-1, 5, 0.7}};
+    plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+    const Vec3 background(0.3, 0.6, 0.9);
+    double worst = 0;
+    for (Integrator integrator :
+         {Integrator::kPreintegrated, Integrator::kExact, Integrator::kExpTexture}) {
+        const SegmentShader shader(tf, integrator, longest_edge(fx.mesh));
+        for (const Camera& camera : kAlphaCameras) {
+            const std::string name = std::string(integrator_name(integrator)) +
+                                     (camera.parallel ? " orthographic" : " perspective");
+            SCOPED_TRACE(name);
+            const CameraFrame frame(camera, 64, 64);
+            VisibilitySorter sorter;
+            std::vector<CellId> order;
+            sorter.sort(fx.mesh, fx.adjacency, SortView::from_camera(frame), SortMethod::kMpvo,
+                        order);
+            std::vector<float> alpha, alpha_b;
+            const Image black =
+                render_alpha(fx, shader, frame, order, Vec3(0.0), nullptr, false, &alpha);
+            const Image over_b =
+                render_alpha(fx, shader, frame, order, background, nullptr, false, &alpha_b);
+            ASSERT_EQ(alpha.size(), black.pixels.size());
+            EXPECT_TRUE(testing::bit_identical(alpha, alpha_b));  // alpha is the volume's alone
+            const testing::AlphaCheck c =
+                testing::check_alpha(black, alpha, over_b, Image(64, 64, Vec3f(background)));
+            // The opaque layer: a tilted plane over a grey background.
+            const OpaqueLayer layer =
+                render_opaque({{&plane, Vec3(0.2, 0.9, 0.3)}}, frame, Vec3(0.4, 0.35, 0.3));
+            ASSERT_GT(layer.pixels_covered, 1000u);
+            std::vector<float> alpha_cut;
+            const Image black_cut =
+                render_alpha(fx, shader, frame, order, Vec3(0.0), &layer, false, &alpha_cut);
+            const Image over_layer =
+                render_alpha(fx, shader, frame, order, Vec3(0.0), &layer, true, nullptr);
+            const testing::AlphaCheck cut =
+                testing::check_alpha(black_cut, alpha_cut, over_layer, layer.color);
+            std::printf(
+                "[ alpha %s ] largest difference %.2g over a background, %.2g over opaque "
+                "geometry; alpha in [%g, %g]; %zu pixels 0, %zu partial, %zu above 0.99\n",
+                name.c_str(), c.largest_difference, cut.largest_difference, c.min_alpha,
+                c.max_alpha, c.pixels_transparent, c.pixels_partial, c.pixels_opaque);
+            worst = std::max({worst, c.largest_difference, cut.largest_difference});
+            // Measured at most 3.7e-7 over integrators and cameras (float rounding: colour and
+            // alpha composited in float, one over per fragment); bound 1e-6.
+            EXPECT_LE(c.largest_difference, 1e-6) << "at " << c.worst_x << ", " << c.worst_y;
+            EXPECT_LE(cut.largest_difference, 1e-6) << "at " << cut.worst_x << ", " << cut.worst_y;
+            EXPECT_GE(c.min_alpha, 0.0f);
+            EXPECT_LE(c.max_alpha, 1.0f);
+            EXPECT_GE(cut.min_alpha, 0.0f);
+            EXPECT_LE(cut.max_alpha, 1.0f);
+            // Empty, partly transparent and nearly opaque pixels, all present.
+            EXPECT_GT(c.pixels_partial, 200u);
+            EXPECT_GT(c.pixels_opaque, 100u);
+            std::size_t missed = 0, lowered = 0;
+            for (int j = 0; j < 64; ++j) {
+                for (int i = 0; i < 64; ++i) {
+                    const std::size_t p = static_cast<std::size_t>(j) * 64 + i;
+                    if (testing::misses_box(frame.pixel_ray(i, j), 0.0, 4.0, 1e-3)) {
+                        ++missed;
+                        EXPECT_EQ(alpha[p], 0.0f) << i << ", " << j;
+                        EXPECT_EQ(alpha_cut[p], 0.0f) << i << ", " << j;
+                    }
+                    EXPECT_LE(alpha_cut[p], alpha[p] + 1e-6f) << i << ", " << j;
+                    lowered += alpha_cut[p] < alpha[p] - 0.05f;
+                }
+            }
+            std::printf("[ alpha ] %zu pixels missed, %zu lowered by the opaque layer\n", missed,
+                        lowered);
+            // Measured 1991 to 2094 pixels missed, 530 to 883 lowered (the plane cuts segments).
+            EXPECT_GT(missed, 1500u);
+            EXPECT_GT(lowered, 400u);
+            // The ray through (3.5, 2, 2) crosses the box where it is opaque.
+            const Vec3 q = frame.project(Vec3(3.5, 2.0, 2.0));
+            const std::size_t known = static_cast<std::size_t>(q.y) * 64 + static_cast<int>(q.x);
+            EXPECT_GT(alpha[known], 0.99f);
+        }
+    }
+    std::printf("[ alpha ] largest difference over all: %.2g\n", worst);
+}
+
+TEST(Renderer, AskingForAlphaChangesNoBitOfThePicture) {
+    const Fixture fx = make_fixture(4, ramp_in_x, 5);
+    const TransferFunction tf = ramp_tf();
+    SurfaceMesh plane;
+    plane.points = {{-1, -1, 0.7}, {5, -1, 2.5}, {5, 5, 2.5}, {-1, 5, 0.7}};
+    plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+    for (Integrator integrator :
+         {Integrator::kPreintegrated, Integrator::kExact, Integrator::kExpTexture}) {
+        const SegmentShader shader(tf, integrator, longest_edge(fx.mesh));
+        for (const Camera& camera : kAlphaCameras) {
+            SCOPED_TRACE(std::string(integrator_name(integrator)) +
+                         (camera.parallel ? " orthographic" : " perspective"));
+            const CameraFrame frame(camera, 64, 64);
+            VisibilitySorter sorter;
+            std::vector<CellId> order;
+            sorter.sort(fx.mesh, fx.adjacency, SortView::from_camera(frame), SortMethod::kMpvo,
+                        order);
+            const OpaqueLayer layer =
+                render_opaque({{&plane, Vec3(0.2, 0.9, 0.3)}}, frame, Vec3(0.4, 0.35, 0.3));
+            const Vec3 background(0.3, 0.6, 0.9);
+            std::vector<float> alpha;
+            for (const OpaqueLayer* l : {static_cast<const OpaqueLayer*>(nullptr), &layer}) {
+                for (bool with_color : {false, true}) {
+                    const Image without =
+                        render_alpha(fx, shader, frame, order, background, l, with_color, nullptr);
+                    const Image with =
+                        render_alpha(fx, shader, frame, order, background, l, with_color, &alpha);
+                    // Not a blank picture (which would be identical trivially).
+                    EXPECT_LT(psnr(without, Image(64, 64, Vec3f(background))), 30.0);
+                    EXPECT_TRUE(testing::bit_identical(without, with));
+                }
+            }
+        }
     }
 }
 
