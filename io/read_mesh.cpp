@@ -141,6 +141,19 @@ std::vector<std::string> supported_mesh_extensions() {
             ".g",   ".exii", ".pvd", ".node", ".ele", ".csv", ".xyz", "xyz.bin", ".mesh"};
 }
 
+Result<std::vector<std::filesystem::path>> mesh_pieces(const std::filesystem::path& path) {
+    try {
+        check_readable_file(path);
+        if (lower_extension(path) != ".pvtu") return std::vector<std::filesystem::path>{path};
+        return pvtu_pieces(path, false);
+    } catch (const IoError& e) {
+        return e.error();
+    } catch (const std::exception& e) {
+        return make_error(ErrorCode::kInternal,
+                          one_line(std::string("unexpected failure: ") + e.what()), path.string());
+    }
+}
+
 Result<UnstructuredMesh> read_mesh(const std::filesystem::path& path, const ReadOptions& options) {
     const std::string where = path.string();
     try {

@@ -48,6 +48,13 @@ struct ReadOptions {
 Result<UnstructuredMesh> read_mesh(const std::filesystem::path& path,
                                    const ReadOptions& options = {});
 
+// The files that hold `path`'s cells, each readable by read_mesh() alone: a .pvtu's pieces, in
+// the order it lists them, resolved against its folder (not opened: each is checked when it is
+// read, by whoever reads it); any other file is its own one piece. How ranks share the reading
+// of a parallel file (distributed/). Errors: those of read_mesh on the .pvtu's own structure.
+// Cost: reading the .pvtu.
+Result<std::vector<std::filesystem::path>> mesh_pieces(const std::filesystem::path& path);
+
 // The extensions read_mesh() accepts, with their dot (".vtu", ...; "xyz.bin" for PLOT3D).
 std::vector<std::string> supported_mesh_extensions();
 

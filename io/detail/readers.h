@@ -18,6 +18,10 @@ namespace fs = std::filesystem;
 // VTK XML: .vtu .pvtu .vts .vtr .vti .vtp (`ext` lower-case with its dot).
 UnstructuredMesh read_vtk_xml(const fs::path& path, const std::string& ext,
                               const ProgressRange& progress);
+// A .pvtu's pieces, resolved against its folder, in its order; with `check_pieces`, each checked
+// as the .vtu reader checks a file, and its points' type against the .pvtu's PPoints (what VTK's
+// parallel reader needs; a piece read alone is checked when it is read).
+std::vector<fs::path> pvtu_pieces(const fs::path& path, bool check_pieces);
 // Legacy .vtk: unstructured, structured, rectilinear grids, structured points, point clouds.
 UnstructuredMesh read_vtk_legacy(const fs::path& path, const ProgressRange& progress);
 // Exodus II: all blocks, variables, side sets; step `time_step`.

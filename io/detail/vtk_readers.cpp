@@ -371,6 +371,40 @@ UnstructuredMesh convert_data_object(vtkDataObject* object, const std::string& w
 
 // ---------------------------------------------------------------------------------------------
 
+std::vector<fs::path> pvtu_pieces(const fs::path& path, bool check_pieces) {
+    const std::string where = path.string();
+    check_vtk_xml(path, "PUnstructuredGrid", ".pvtu");
+    const std::string text = read_all(path);
+    std::vector<fs::path> pieces;
+    for (std::size_t pos = text.find("<Piece"); pos != std::string::npos;
+         pos = text.find("<Piece", pos + 1)) {
+        const std::string source = xml_attribute(text, pos, "Source");
+        if (source.empty()) continue;
+        const fs::path piece =
+            fs::path(source).is_absolute() ? fs::path(source) : path.parent_path() / source;
+        pieces.push_back(piece);
+        if (!check_pieces) continue;
+        std::error_code ec;
+        if (!fs::exists(piece, ec)) {
+            fail(ErrorCode::kNotFound, "piece '" + source + "' listed in the .pvtu does not exist",
+                 where);
+        }
+        check_vtk_xml(piece, "UnstructuredGrid", ".vtu");
+        // VTK reads a piece's points as the .pvtu's PPoints declare them: a type that
+        // differs reinterprets the bytes (Float64 over Float32: coordinates up to 3e9).
+        const std::string declared = first_array_type(text, "<PPoints", "<PDataArray");
+        const std::string stored =
+            first_array_type(read_head(piece, 1 << 16), "<Points", "<DataArray");
+        if (!declared.empty() && !stored.empty() && declared != stored) {
+            fail(ErrorCode::kParse,
+                 "PPoints declares " + declared + " points, but piece '" + source + "' stores " +
+                     stored,
+                 where);
+        }
+    }
+    return pieces;
+}
+
 UnstructuredMesh read_vtk_xml(const fs::path& path, const std::string& ext,
                               const ProgressRange& progress) {
     struct Kind {
@@ -393,34 +427,7 @@ UnstructuredMesh read_vtk_xml(const fs::path& path, const std::string& ext,
     const std::string where = path.string();
     if (kind == nullptr) fail(ErrorCode::kUnsupported, "not a VTK XML extension: " + ext, where);
     check_vtk_xml(path, kind->type, ext);
-    if (ext == ".pvtu") {
-        // VTK reads the pieces with its own sub-readers: check them the same way first.
-        const std::string text = read_all(path);
-        for (std::size_t pos = text.find("<Piece"); pos != std::string::npos;
-             pos = text.find("<Piece", pos + 1)) {
-            const std::string source = xml_attribute(text, pos, "Source");
-            if (source.empty()) continue;
-            const fs::path piece =
-                fs::path(source).is_absolute() ? fs::path(source) : path.parent_path() / source;
-            std::error_code ec;
-            if (!fs::exists(piece, ec)) {
-                fail(ErrorCode::kNotFound,
-                     "piece '" + source + "' listed in the .pvtu does not exist", where);
-            }
-            check_vtk_xml(piece, "UnstructuredGrid", ".vtu");
-            // VTK reads a piece's points as the .pvtu's PPoints declare them: a type that
-            // differs reinterprets the bytes (Float64 over Float32: coordinates up to 3e9).
-            const std::string declared = first_array_type(text, "<PPoints", "<PDataArray");
-            const std::string stored =
-                first_array_type(read_head(piece, 1 << 16), "<Points", "<DataArray");
-            if (!declared.empty() && !stored.empty() && declared != stored) {
-                fail(ErrorCode::kParse,
-                     "PPoints declares " + declared + " points, but piece '" + source +
-                         "' stores " + stored,
-                     where);
-            }
-        }
-    }
+    if (ext == ".pvtu") pvtu_pieces(path, true);  // checked as VTK's sub-readers will read them
 
     vtkSmartPointer<vtkXMLReader> reader;
     if (ext == ".vtu") reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
