@@ -26,6 +26,9 @@ class RenderMethod {
     // a flow volume). Errors name the JSON path ("$.method.depth: ...").
     virtual Status check(const Scene& scene, const RenderOptions& options) const = 0;
 
+    // Whether it draws RenderOptions::transparent (premultiplied RGBA over transparent black).
+    virtual bool draws_transparent() const { return false; }
+
     // Renders the scene, taking meshes, orders and shaders from `pipeline`. Precondition:
     // check() passed.
     virtual Result<RenderResult> render(Pipeline& pipeline, const Scene& scene,

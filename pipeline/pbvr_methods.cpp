@@ -44,6 +44,18 @@ Status check_common(const Scene& scene, const RenderOptions& options, std::strin
     return {};
 }
 
+// The view of the particles: the camera, and the background and opaque surfaces behind them (a
+// transparent picture: black, and the surfaces' depth only).
+void set_view(VolumeScene& ps, const CameraFrame& frame, const Scene& scene,
+              const OpaqueLayer& layer, const RenderOptions& options) {
+    ps.camera = &frame;
+    ps.background = options.transparent ? Vec3(0.0) : scene.background;
+    if (!layer.depth.empty()) {
+        ps.opaque_color = options.transparent ? nullptr : &layer.color;
+        ps.opaque_depth = &layer.depth;
+    }
+}
+
 int repetitions_of(const Scene& scene) {
     return scene.method && scene.method->repetitions ? *scene.method->repetitions
                                                      : kDefaultRepetitions;
@@ -56,6 +68,7 @@ std::uint64_t seed_of(const Scene& scene) {
 class PbvrObject final : public RenderMethod {
   public:
     std::string_view name() const override { return "pbvr-object"; }
+    bool draws_transparent() const override { return true; }
 
     Status check(const Scene& scene, const RenderOptions& options) const override {
         TR_TRY_STATUS(only_keys(scene, name(), {"subpixel_level", "sampling"}));
@@ -80,7 +93,7 @@ class PbvrObject final : public RenderMethod {
     }
 
     Result<RenderResult> render(Pipeline& pipeline, const Scene& scene,
-                                const RenderOptions&) const override {
+                                const RenderOptions& render_options) const override {
         RenderResult result;
         TR_TRY(const std::unique_ptr<SceneVolumes> loaded,
                load_scene_volumes(pipeline, scene, result.stats));
@@ -96,12 +109,7 @@ class PbvrObject final : public RenderMethod {
             options.sampling = *parse_particle_sampling(std::get<std::string>(*o));
         }
         VolumeScene& ps = loaded->scene;
-        ps.camera = &frame;
-        ps.background = scene.background;
-        if (!layer.depth.empty()) {
-            ps.opaque_color = &layer.color;
-            ps.opaque_depth = &layer.depth;
-        }
+        set_view(ps, frame, scene, layer, render_options);
         const ObjectPbvrPlan plan = plan_object_pbvr(ps, options);
         const double candidates = plan.candidates;
         if (candidates > kMaxObjectCandidates) {
@@ -115,7 +123,8 @@ class PbvrObject final : public RenderMethod {
                 scene.source);
         }
         ObjectPbvrStats stats;
-        result.image = render_object_pbvr(ps, options, &stats, &plan);
+        result.image = render_object_pbvr(ps, options, &stats, &plan,
+                                          render_options.transparent ? &result.alpha : nullptr);
         NamedStats& s = result.stats;
         s.set("generate_ms", stats.generate_ms);
         s.set("resolve_ms", stats.resolve_ms);
@@ -136,6 +145,7 @@ class PbvrObject final : public RenderMethod {
 class PbvrImage final : public RenderMethod {
   public:
     std::string_view name() const override { return "pbvr-image"; }
+    bool draws_transparent() const override { return true; }
 
     Status check(const Scene& scene, const RenderOptions& options) const override {
         TR_TRY_STATUS(only_keys(scene, name(), {"depth", "stratified", "control_variate"}));
@@ -158,7 +168,7 @@ class PbvrImage final : public RenderMethod {
     }
 
     Result<RenderResult> render(Pipeline& pipeline, const Scene& scene,
-                                const RenderOptions&) const override {
+                                const RenderOptions& render_options) const override {
         RenderResult result;
         TR_TRY(const std::unique_ptr<SceneVolumes> loaded,
                load_scene_volumes(pipeline, scene, result.stats));
@@ -177,12 +187,7 @@ class PbvrImage final : public RenderMethod {
             options.control_variate = std::get<bool>(*o);
         }
         VolumeScene& ps = loaded->scene;
-        ps.camera = &frame;
-        ps.background = scene.background;
-        if (!layer.depth.empty()) {
-            ps.opaque_color = &layer.color;
-            ps.opaque_depth = &layer.depth;
-        }
+        set_view(ps, frame, scene, layer, render_options);
         if (ps.volumes.size() == 1) {  // the segments' mean colours (pbvr_image.h)
             const auto start = Clock::now();
             ps.volumes[0].shader =
@@ -191,7 +196,8 @@ class PbvrImage final : public RenderMethod {
             result.stats.set("shader_ms", ms_since(start));
         }
         ImagePbvrStats stats;
-        result.image = render_image_pbvr(ps, options, &stats);
+        result.image = render_image_pbvr(ps, options, &stats,
+                                         render_options.transparent ? &result.alpha : nullptr);
         NamedStats& s = result.stats;
         s.set("raster_ms", stats.raster_ms);
         s.set("fragments", stats.fragments);

@@ -113,6 +113,11 @@ Status Pipeline::check(const Scene& scene, const RenderOptions& options) const {
             scene, ErrorCode::kInvalidArgument,
             "$.method.name: unknown method '" + scene.method_name() + "' (" + names + ")");
     }
+    if (options.transparent && !method->draws_transparent()) {
+        return scene_error(scene, ErrorCode::kUnsupported,
+                           "$.method.name: " + scene.method_name() +
+                               " does not draw a volume alone over transparent black");
+    }
     return method->check(scene, options);
 }
 
@@ -146,7 +151,8 @@ Result<RenderResult> Pipeline::render(const Scene& scene, const RenderOptions& o
     try {
         TR_TRY(RenderResult result, method->render(*this, scene, options));
         // A volume out of view draws nothing: say so (the picture is right, but rarely meant).
-        if (!scene.flow_volume) {
+        // Not for a transparent picture, which is a part of one.
+        if (!scene.flow_volume && !options.transparent) {
             const CameraFrame frame(scene.camera, scene.width, scene.height);
             bool any_out = false;
             for (std::size_t v = 0; v < scene.volumes.size(); ++v) {

@@ -50,6 +50,13 @@ struct RenderOptions {
     // size) under the volume instead of the scene's opaque surfaces: how the animated methods
     // split the volume's ray integral at their sheets' depths. Null: the scene's own.
     const OpaqueLayer* opaque_override = nullptr;
+    // The volume alone, as premultiplied RGBA over transparent black: RenderResult::image its
+    // colour, RenderResult::alpha its opacity per pixel (the picture over a background b is
+    // image + (1 - alpha) b). Opaque surfaces stop the rays but are not drawn, nor is the
+    // background: how each MPI rank draws its part (distributed/). Methods:
+    // projected-tetrahedra (not its flow volumes or the reference ray caster), pbvr-image,
+    // pbvr-object; the others refuse it in check().
+    bool transparent = false;
 };
 
 // The names users give sorts and integrators, with one wording of their errors for every
@@ -68,6 +75,7 @@ struct RenderResult {
     NamedStats stats;                // each stage's time (ms) and counts, in order
     std::vector<std::string> notes;  // what the user should know (an order that is not exact)
     std::shared_ptr<const FlowVolume> flow_volume;  // the flow volume drawn, if any
+    std::vector<float> alpha;  // RenderOptions::transparent: opacity per pixel, rows as image's
 };
 
 // Opaque surfaces of a scene, resolved: the surfaces and their colours.

@@ -67,6 +67,31 @@ Result<RenderResult> render_flow_volume(Pipeline& pipeline, const Scene& scene,
     return result;
 }
 
+// What the volume is drawn over: the opaque surfaces' colour and depth (or the override's), or
+// the background; for a transparent picture, black and the surfaces' depth only.
+struct Behind {
+    Vec3 background{0.0};
+    const Image* color = nullptr;
+    const std::vector<double>* depth = nullptr;
+};
+
+Behind behind_volume(const Scene& scene, const RenderOptions& options, const OpaqueLayer& layer) {
+    Behind behind;
+    if (options.opaque_override) {
+        behind.color = &options.opaque_override->color;
+        behind.depth = &options.opaque_override->depth;
+    } else if (!layer.depth.empty()) {
+        behind.color = &layer.color;
+        behind.depth = &layer.depth;
+    }
+    behind.background = scene.background;
+    if (options.transparent) {
+        behind.background = Vec3(0.0);
+        behind.color = nullptr;
+    }
+    return behind;
+}
+
 // The brute-force reference ray caster: no sort, no opaque geometry. Several volumes go by its
 // own path for them (project/reference_raycaster.h), one volume by the one-mesh path.
 Result<RenderResult> render_reference_picture(Pipeline& pipeline, const Scene& scene) {
@@ -122,16 +147,13 @@ Result<RenderResult> render_merged(Pipeline& pipeline, const Scene& scene,
                                   : render_opaque(opaque.layers(), frame, scene.background);
     result.stats.set("opaque_ms", ms_since(start));
     merged.camera = &frame;
-    merged.background = scene.background;
-    if (options.opaque_override) {
-        merged.opaque_color = &options.opaque_override->color;
-        merged.opaque_depth = &options.opaque_override->depth;
-    } else if (!opaque.empty()) {
-        merged.opaque_color = &layer.color;
-        merged.opaque_depth = &layer.depth;
-    }
+    const Behind behind = behind_volume(scene, options, layer);
+    merged.background = behind.background;
+    merged.opaque_color = behind.color;
+    merged.opaque_depth = behind.depth;
     SegmentMergeStats merge;
-    result.image = render_segment_merge(merged, &merge);
+    result.image =
+        render_segment_merge(merged, &merge, options.transparent ? &result.alpha : nullptr);
     NamedStats& stats = result.stats;
     stats.set("raster_ms", merge.raster_ms);
     stats.set("fragments", merge.fragments);
@@ -148,6 +170,7 @@ Result<RenderResult> render_merged(Pipeline& pipeline, const Scene& scene,
 class ProjectedTetrahedra final : public RenderMethod {
   public:
     std::string_view name() const override { return kDefaultMethod; }
+    bool draws_transparent() const override { return true; }
 
     Status check(const Scene& scene, const RenderOptions& options) const override {
         if (scene.method) {
@@ -166,6 +189,12 @@ class ProjectedTetrahedra final : public RenderMethod {
         if (options.reference && !scene.opaque.empty()) {
             return make_error(ErrorCode::kUnsupported,
                               "the reference ray caster draws no opaque geometry", scene.source);
+        }
+        if (options.transparent && (options.reference || scene.flow_volume)) {
+            return make_error(ErrorCode::kUnsupported,
+                              "the reference ray caster and flow volumes are not drawn over "
+                              "transparent black",
+                              scene.source);
         }
         if (options.reference && scene.flow_volume) {
             return make_error(ErrorCode::kUnsupported,
@@ -228,21 +257,18 @@ class ProjectedTetrahedra final : public RenderMethod {
         result.stats.set("opaque_ms", ms_since(start));
 
         RenderInputs in;
-        if (options.opaque_override) {
-            in.opaque_color = &options.opaque_override->color;
-            in.opaque_depth = &options.opaque_override->depth;
-        } else if (!opaque.empty()) {
-            in.opaque_color = &layer.color;
-            in.opaque_depth = &layer.depth;
-        }
+        const Behind behind = behind_volume(scene, options, layer);
+        in.opaque_color = behind.color;
+        in.opaque_depth = behind.depth;
+        in.background = behind.background;
         in.mesh = &prepared.mesh();
         in.scalar = scalar;
         in.order = view.order;
         in.shader = &shader;
         in.camera = &frame;
-        in.background = scene.background;
         RenderStats raster;
-        result.image = render_projected_tetrahedra(in, &raster);
+        result.image =
+            render_projected_tetrahedra(in, &raster, options.transparent ? &result.alpha : nullptr);
         NamedStats& stats = result.stats;
         stats.set("raster_ms", raster.raster_ms);
         stats.set("cells", loaded->tets.num_real_tets());

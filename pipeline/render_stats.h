@@ -12,7 +12,8 @@
 
 namespace tr {
 
-using StatValue = std::variant<bool, std::int64_t, double, std::string>;
+// A value, or one number per MPI rank (distributed/: in rank order).
+using StatValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>>;
 
 class NamedStats {
   public:
@@ -22,7 +23,7 @@ class NamedStats {
     // from.
     template <class T>
     void set(std::string_view key, const T& value) {
-        if constexpr (std::is_same_v<T, bool>) {
+        if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, std::vector<double>>) {
             set_value(key, StatValue(value));
         } else if constexpr (std::is_integral_v<T>) {
             set_value(key, StatValue(static_cast<std::int64_t>(value)));
