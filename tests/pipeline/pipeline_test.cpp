@@ -505,3 +505,83 @@ TEST(Pipeline, FlowVolumeLayerByLayer) {
 
 }  // namespace
 }  // namespace tr
+
+namespace tr {
+namespace {
+
+// The most any channel of `over` differs from `transparent + (1 - alpha) behind`.
+double largest_composite_error(const RenderResult& transparent, const RenderResult& over,
+                               const Image& behind) {
+    double worst = 0;
+    for (std::size_t i = 0; i < over.image.pixels.size(); ++i) {
+        const Vec3f expected =
+            transparent.image.pixels[i] + (1.0f - transparent.alpha[i]) * behind.pixels[i];
+        for (int c = 0; c < 3; ++c) {
+            worst = std::max(worst,
+                             static_cast<double>(std::abs(expected[c] - over.image.pixels[i][c])));
+        }
+    }
+    return worst;
+}
+
+// A transparent render is the volume alone: put over the background (or the opaque surfaces'
+// picture) it is the ordinary render, for each method that draws it; a method that cannot is
+// refused before anything is loaded.
+TEST(TransparentRender, OverTheBackgroundItIsTheOrdinaryPicture) {
+    Scene scene = scene_of(grid(4, ring));
+    // An opaque plate through the middle of the grid, half the volume in front of it.
+    auto plate = std::make_shared<SurfaceMesh>();
+    plate->points = {Vec3(-1, -1, 2.1), Vec3(5, -1, 2.1), Vec3(5, 5, 2.1), Vec3(-1, 5, 2.1)};
+    plate->triangles = {{0, 1, 2}, {0, 2, 3}};
+    // Projected tetrahedra twice: one volume (sorted) and two (merged per pixel).
+    for (const std::string name :
+         {"projected-tetrahedra", "projected-tetrahedra+", "pbvr-image", "pbvr-object"}) {
+        for (const bool with_plate : {false, true}) {
+            SCOPED_TRACE(name + (with_plate ? " over a plate" : ""));
+            Scene s = scene;
+            if (name.back() == '+') {
+                s.volumes.push_back(s.volumes[0]);
+                s.volumes[1].transfer_function =
+                    make_quick_transfer_function("inferno", 0.05, 0.95, 0.3, 1.5).value();
+                s.method = method("projected-tetrahedra");
+            } else {
+                s.method = method(name, 8, 5);
+            }
+            if (with_plate) {
+                OpaqueSpec spec;
+                spec.surface = plate;
+                spec.color = Vec3(0.7, 0.3, 0.2);
+                s.opaque.push_back(spec);
+            }
+            Pipeline pipeline;
+            auto over = pipeline.render(s);
+            ASSERT_TRUE(over.ok()) << over.error().to_string();
+            RenderOptions options;
+            options.transparent = true;
+            auto alone = pipeline.render(s, options);
+            ASSERT_TRUE(alone.ok()) << alone.error().to_string();
+            ASSERT_EQ(alone->alpha.size(), over->image.pixels.size());
+            Image behind(s.width, s.height, Vec3f(s.background));
+            if (with_plate) {
+                const CameraFrame frame(s.camera, s.width, s.height);
+                behind = render_opaque(pipeline.opaque(s)->layers(), frame, s.background).color;
+            }
+            const double error = largest_composite_error(*alone, *over, behind);
+            std::printf("[ transparent %s%s ] largest difference %.3g\n", name.c_str(),
+                        with_plate ? " over a plate" : "", error);
+            // Measured: at most 1.5e-7 (float rounding of the over operators).
+            EXPECT_LE(error, 1e-6);
+            EXPECT_GT(*std::max_element(alone->alpha.begin(), alone->alpha.end()), 0.5f);
+        }
+    }
+    Scene splat = scene;
+    splat.method = method("splat");
+    RenderOptions options;
+    options.transparent = true;
+    const Status refused = Pipeline().check(splat, options);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().message.find("transparent"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tr
