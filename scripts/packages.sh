@@ -11,6 +11,11 @@ TETRENDER_PACKAGES=(
   pybind11-dev python3-dev python3-numpy python3-pytest python3-meshio
 )
 
+# What the MPI build and its tests add (scripts/test.sh; demo.sh stays lean): OpenMPI, and IceT
+# as Debian ships it, inside ParaView (never python3-paraview: it conflicts with python3-vtk9,
+# and apt would remove libvtk9-dev). README, "On a cluster".
+TETRENDER_MPI_PACKAGES=(libopenmpi-dev openmpi-bin paraview-dev)
+
 ensure_packages() {
   local missing=() pkg
   for pkg in "${TETRENDER_PACKAGES[@]}"; do

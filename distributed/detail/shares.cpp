@@ -1,0 +1,200 @@
+#include <distributed/box_cut.h>
+#include <distributed/detail/collectives.h>
+#include <distributed/detail/guarded.h>
+#include <distributed/detail/shares.h>
+#include <io/read_mesh.h>
+#include <mesh/point_data.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace tr::distributed_detail {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Samples of cell centroids the partition is balanced on (over every rank together).
+constexpr std::int64_t kPartitionSamples = 1 << 16;
+
+bool is_pvtu(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".pvtu";
+}
+
+// The volume's scalar on `tets` (scene.md "The scalar"), every value finite, as tet pieces.
+Status append_pieces(const TetMesh& tets, const SceneVolume& volume, const std::string& name,
+                     std::vector<TetPiece>& out) {
+    auto scalar = point_scalar(tets, volume.scalar, volume.component);
+    if (!scalar.ok()) return with_where(scalar.error(), name);
+    for (std::size_t p = 0; p < scalar->size(); ++p) {
+        if (!std::isfinite((*scalar)[p])) {
+            return make_error(
+                ErrorCode::kInvalidMesh,
+                "array '" + volume.scalar + "' is not finite at point " + std::to_string(p), name);
+        }
+    }
+    std::vector<TetPiece> pieces = tet_pieces(tets, *scalar);
+    out.insert(out.end(), pieces.begin(), pieces.end());
+    return {};
+}
+
+struct Share {
+    std::vector<TetPiece> tets;
+    std::size_t files = 0;
+};
+
+// Step 1 for one volume on this rank: its run of a .pvtu's pieces, or (rank 0) the whole mesh.
+Result<Share> read_share(const SceneVolume& volume, const LoadOptions& load, int rank, int size) {
+    LoadOptions options = load;
+    options.time_step = volume.time_step;
+    Share share;
+    if (!volume.tets && !volume.data && is_pvtu(volume.mesh)) {
+        TR_TRY(const std::vector<std::filesystem::path> pieces, mesh_pieces(volume.mesh));
+        const std::size_t n = pieces.size();
+        const std::size_t first = n * static_cast<std::size_t>(rank) / size;
+        const std::size_t last = n * static_cast<std::size_t>(rank + 1) / size;
+        for (std::size_t i = first; i < last; ++i) {
+            TR_TRY(const LoadedMesh piece, load_tet_mesh(pieces[i], options));
+            if (piece.used_delaunay) {
+                return make_error(ErrorCode::kUnsupported,
+                                  "a piece without cells (a point cloud): Delaunay piece by "
+                                  "piece would not be the whole cloud's; give the points in "
+                                  "one file",
+                                  pieces[i].string());
+            }
+            TR_TRY_STATUS(append_pieces(piece.tets, volume, pieces[i].string(), share.tets));
+            ++share.files;
+        }
+        return share;
+    }
+    if (rank != 0) return share;
+    LoadedMesh loaded;
+    if (volume.tets) {
+        loaded.tets = *volume.tets;
+    } else if (volume.data) {
+        TR_TRY(loaded, load_tet_mesh(*volume.data, volume.mesh.string(), options));
+    } else {
+        TR_TRY(loaded, load_tet_mesh(volume.mesh, options));
+    }
+    TR_TRY_STATUS(append_pieces(loaded.tets, volume, volume.mesh.string(), share.tets));
+    share.files = 1;
+    return share;
+}
+
+// Step 2: the partition every rank builds from the same samples.
+KdPartition partition_of(const std::vector<Share>& shares, int size, std::int64_t total) {
+    Bounds3 bounds;
+    for (const Share& share : shares) {
+        for (const TetPiece& t : share.tets) {
+            for (const Vec3& c : t.corners) bounds.extend(c);
+        }
+    }
+    const Bounds3 domain = bounds_over_ranks(bounds);
+    const std::int64_t stride = std::max<std::int64_t>(1, total / kPartitionSamples);
+    std::vector<Vec3> samples;  // centroid, bounds' low and high corners, for each sample
+    std::int64_t index = 0;
+    for (const Share& share : shares) {
+        for (const TetPiece& t : share.tets) {
+            if (index++ % stride != 0) continue;
+            Bounds3 b;
+            for (const Vec3& c : t.corners) b.extend(c);
+            samples.push_back(0.25 * (t.corners[0] + t.corners[1] + t.corners[2] + t.corners[3]));
+            samples.push_back(b.lo);
+            samples.push_back(b.hi);
+        }
+    }
+    const std::vector<Vec3> all = gather_to_all(samples);
+    std::vector<CellSample> cells(all.size() / 3);
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+        cells[i].centroid = all[3 * i];
+        cells[i].bounds.lo = all[3 * i + 1];
+        cells[i].bounds.hi = all[3 * i + 2];
+    }
+    return KdPartition::balanced(cells, size, domain);
+}
+
+}  // namespace
+
+Result<Shares> read_and_redistribute(const MpiWorld& world, const Scene& scene,
+                                     const LoadOptions& load) {
+    Shares out;
+    ShareStats& stats = out.stats;
+    // 1. Reading.
+    auto start = Clock::now();
+    std::vector<Share> shares(scene.volumes.size());
+    const Status read = guarded([&]() -> Status {
+        for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
+            auto share = read_share(scene.volumes[v], load, world.rank(), world.size());
+            if (!share.ok()) {
+                Error e = share.error();
+                if (scene.volumes.size() > 1)
+                    e.message = "volume " + std::to_string(v) + ": " + e.message;
+                return e;
+            }
+            shares[v] = std::move(share).value();
+            stats.files_read += shares[v].files;
+            stats.cells_read += shares[v].tets.size();
+        }
+        return {};
+    });
+    TR_TRY_STATUS(world.agree(read));
+    stats.read_ms = ms_since(start);
+    stats.reading =
+        !scene.volumes[0].tets && !scene.volumes[0].data && is_pvtu(scene.volumes[0].mesh)
+            ? "pieces"
+            : "rank 0";
+
+    // 2. The partition.
+    start = Clock::now();
+    const std::int64_t total = sum_over_ranks(static_cast<std::int64_t>(stats.cells_read));
+    if (total == 0) {
+        return make_error(ErrorCode::kInvalidMesh, "no rank read a cell", scene.source);
+    }
+    out.partition = partition_of(shares, world.size(), total);
+
+    // 3. Every volume cut at the planes and exchanged; each rank's pieces merged into a mesh.
+    for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
+        std::vector<std::vector<TetPiece>> to_rank(static_cast<std::size_t>(world.size()));
+        CutStats cut;
+        const Status cutting = guarded([&]() -> Status {
+            for (const TetPiece& tet : shares[v].tets)
+                cut_into_parts(out.partition, tet, to_rank, &cut);
+            return {};
+        });
+        TR_TRY_STATUS(world.agree(cutting));
+        shares[v].tets = {};
+        stats.tets_cut += cut.cut;
+        stats.pieces_made += cut.pieces;
+        std::uint64_t sent = 0;
+        std::vector<TetPiece> received;
+        const Status exchanged = guarded([&]() -> Status {
+            received = exchange_pieces(to_rank, &sent);
+            return {};
+        });
+        TR_TRY_STATUS(world.agree(exchanged));
+        stats.bytes_sent += sent;
+        to_rank = {};
+        std::shared_ptr<const TetMesh> mesh;
+        const Status merged = guarded([&]() -> Status {
+            if (received.empty()) {
+                mesh = std::make_shared<const TetMesh>();
+                return {};
+            }
+            auto m = mesh_of_pieces(received, scene.volumes[v].scalar);
+            if (!m.ok()) return with_where(m.error(), scene.volumes[v].mesh.string());
+            mesh = std::make_shared<const TetMesh>(std::move(m).value());
+            return {};
+        });
+        TR_TRY_STATUS(world.agree(merged));
+        stats.cells += mesh->num_real_tets();
+        stats.volume += mesh->real_volume();
+        out.meshes.push_back(std::move(mesh));
+    }
+    stats.redistribute_ms = ms_since(start);
+    return out;
+}
+
+}  // namespace tr::distributed_detail
