@@ -237,8 +237,15 @@ Result<DistributedResult> DistributedRenderer::Impl::draw_and_composite(
     per_rank("cells", static_cast<double>(s.cells));
     per_rank("volume", s.volume);
     per_rank("read_ms", s.read_ms);
+    per_rank("partition_ms", s.partition_ms);
+    per_rank("cut_ms", s.cut_ms);
+    per_rank("exchange_ms", s.exchange_ms);
+    per_rank("merge_ms", s.merge_ms);
     per_rank("redistribute_ms", s.redistribute_ms);
     per_rank("bytes_sent", static_cast<double>(s.bytes_sent));
+    per_rank("adjacency_ms", drawn.stats.number("adjacency_ms"));
+    per_rank("convexify_ms", drawn.stats.number("convexify_ms"));
+    per_rank("shader_ms", drawn.stats.number("shader_ms"));
     per_rank("sort_ms", drawn.stats.number("sort_ms"));
     per_rank("raster_ms", drawn.stats.number("raster_ms"));
     per_rank("fragments", drawn.stats.number("fragments"));

@@ -1,3 +1,4 @@
+#include <core/parallel.h>
 #include <distributed/box_cut.h>
 #include <distributed/detail/collectives.h>
 #include <distributed/detail/guarded.h>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <new>
 
 namespace tr::distributed_detail {
 namespace {
@@ -116,67 +118,111 @@ KdPartition partition_of(const std::vector<Share>& shares, int size, std::int64_
     return KdPartition::balanced(cells, size, domain);
 }
 
+// Step 3's cutting: every tet's pieces, by the rank that owns them. Blocks of tets are cut
+// concurrently and their pieces joined in block order (the same whatever the thread count).
+std::vector<std::vector<TetPiece>> cut_all(const KdPartition& partition,
+                                           const std::vector<TetPiece>& tets, CutStats* stats) {
+    constexpr std::size_t kBlock = 1 << 14;
+    const std::size_t parts = static_cast<std::size_t>(partition.num_parts());
+    const std::size_t blocks = (tets.size() + kBlock - 1) / kBlock;
+    std::vector<std::vector<std::vector<TetPiece>>> by_block(blocks);
+    std::vector<CutStats> block_stats(blocks);
+    std::vector<char> failed(blocks, 0);
+    parallel_for(0, blocks, 1, [&](std::size_t b) {
+        try {
+            by_block[b].resize(parts);
+            const std::size_t end = std::min(tets.size(), (b + 1) * kBlock);
+            for (std::size_t t = b * kBlock; t < end; ++t) {
+                cut_into_parts(partition, tets[t], by_block[b], &block_stats[b]);
+            }
+        } catch (const std::bad_alloc&) {
+            failed[b] = 1;  // the body must not throw (core/parallel.h): reported below
+        }
+    });
+    if (std::find(failed.begin(), failed.end(), 1) != failed.end()) throw std::bad_alloc();
+    std::vector<std::vector<TetPiece>> to_rank(parts);
+    for (std::size_t p = 0; p < parts; ++p) {
+        std::size_t n = 0;
+        for (const auto& block : by_block) n += block[p].size();
+        to_rank[p].reserve(n);
+        for (auto& block : by_block) {
+            to_rank[p].insert(to_rank[p].end(), block[p].begin(), block[p].end());
+            block[p] = {};
+        }
+    }
+    for (const CutStats& s : block_stats) {
+        stats->whole += s.whole;
+        stats->cut += s.cut;
+        stats->pieces += s.pieces;
+    }
+    return to_rank;
+}
+
 }  // namespace
 
 Result<Shares> read_and_redistribute(const MpiWorld& world, const Scene& scene,
                                      const LoadOptions& load) {
     Shares out;
     ShareStats& stats = out.stats;
-    // 1. Reading.
-    auto start = Clock::now();
+    // 1. Reading (the time of this rank's own work: the agreement waits for the slowest).
     std::vector<Share> shares(scene.volumes.size());
     const Status read = guarded([&]() -> Status {
+        const auto start = Clock::now();
         for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
             auto share = read_share(scene.volumes[v], load, world.rank(), world.size());
             if (!share.ok()) {
                 Error e = share.error();
-                if (scene.volumes.size() > 1)
+                if (scene.volumes.size() > 1) {
                     e.message = "volume " + std::to_string(v) + ": " + e.message;
+                }
                 return e;
             }
             shares[v] = std::move(share).value();
             stats.files_read += shares[v].files;
             stats.cells_read += shares[v].tets.size();
         }
+        stats.read_ms = ms_since(start);
         return {};
     });
     TR_TRY_STATUS(world.agree(read));
-    stats.read_ms = ms_since(start);
     stats.reading =
         !scene.volumes[0].tets && !scene.volumes[0].data && is_pvtu(scene.volumes[0].mesh)
             ? "pieces"
             : "rank 0";
 
     // 2. The partition.
-    start = Clock::now();
+    auto start = Clock::now();
     const std::int64_t total = sum_over_ranks(static_cast<std::int64_t>(stats.cells_read));
     if (total == 0) {
         return make_error(ErrorCode::kInvalidMesh, "no rank read a cell", scene.source);
     }
     out.partition = partition_of(shares, world.size(), total);
+    stats.partition_ms = ms_since(start);
 
     // 3. Every volume cut at the planes and exchanged; each rank's pieces merged into a mesh.
     for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
-        std::vector<std::vector<TetPiece>> to_rank(static_cast<std::size_t>(world.size()));
+        start = Clock::now();
         CutStats cut;
-        const Status cutting = guarded([&]() -> Status {
-            for (const TetPiece& tet : shares[v].tets)
-                cut_into_parts(out.partition, tet, to_rank, &cut);
-            return {};
+        auto to_rank = guarded([&]() -> Result<std::vector<std::vector<TetPiece>>> {
+            return cut_all(out.partition, shares[v].tets, &cut);
         });
-        TR_TRY_STATUS(world.agree(cutting));
+        TR_TRY_STATUS(world.agree(to_rank.ok() ? Status() : Status(to_rank.error())));
         shares[v].tets = {};
         stats.tets_cut += cut.cut;
         stats.pieces_made += cut.pieces;
+        stats.cut_ms += ms_since(start);
+        start = Clock::now();
         std::uint64_t sent = 0;
         std::vector<TetPiece> received;
         const Status exchanged = guarded([&]() -> Status {
-            received = exchange_pieces(to_rank, &sent);
+            received = exchange_pieces(*to_rank, &sent);
             return {};
         });
         TR_TRY_STATUS(world.agree(exchanged));
         stats.bytes_sent += sent;
-        to_rank = {};
+        to_rank = std::vector<std::vector<TetPiece>>();
+        stats.exchange_ms += ms_since(start);
+        start = Clock::now();
         std::shared_ptr<const TetMesh> mesh;
         const Status merged = guarded([&]() -> Status {
             if (received.empty()) {
@@ -192,8 +238,9 @@ Result<Shares> read_and_redistribute(const MpiWorld& world, const Scene& scene,
         stats.cells += mesh->num_real_tets();
         stats.volume += mesh->real_volume();
         out.meshes.push_back(std::move(mesh));
+        stats.merge_ms += ms_since(start);
     }
-    stats.redistribute_ms = ms_since(start);
+    stats.redistribute_ms = stats.partition_ms + stats.cut_ms + stats.exchange_ms + stats.merge_ms;
     return out;
 }
 

@@ -18,8 +18,12 @@
 namespace tr::distributed_detail {
 
 struct ShareStats {
-    double read_ms = 0;            // reading and tetrahedralizing this rank's files
-    double redistribute_ms = 0;    // partition, cutting, the exchange, merging the pieces
+    double read_ms = 0;            // reading and tetrahedralizing this rank's files (its own work)
+    double partition_ms = 0;       // sampling, gathering the samples, the k-d tree
+    double cut_ms = 0;             // cutting this rank's tets at the planes
+    double exchange_ms = 0;        // the all-to-all (waiting for the slowest rank included)
+    double merge_ms = 0;           // this rank's pieces into a mesh
+    double redistribute_ms = 0;    // the four above
     std::size_t files_read = 0;    // files (or pieces) this rank read
     std::size_t cells_read = 0;    // tets this rank read (all volumes)
     std::size_t cells = 0;         // tets of this rank's box after the exchange (all volumes)

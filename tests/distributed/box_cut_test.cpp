@@ -4,6 +4,7 @@
 #include <distributed/box_cut.h>
 #include <distributed/kd_partition.h>
 #include <mesh/face_adjacency.h>
+#include <tests/pbvr/pbvr_test_scenes.h>
 
 #include <gtest/gtest.h>
 
@@ -14,8 +15,8 @@ namespace tr {
 namespace {
 
 // An n^3 grid of unit cubes over [0, n]^3, each cut into six tets around its main diagonal
-// (Kuhn: conforming), interior points moved at random by up to `jitter` along each axis; the
-// scalar a linear field.
+// (tests/pbvr's uniform box: conforming), interior points moved at random by up to `jitter`
+// along each axis; the scalar a linear field.
 struct GridMesh {
     TetMesh mesh;
     std::vector<float> scalar;
@@ -24,47 +25,20 @@ struct GridMesh {
 double linear_field(const Vec3& p) { return 0.25 * p.x - 0.5 * p.y + 0.125 * p.z + 1.0; }
 
 GridMesh jittered_grid(int n, double jitter, std::uint32_t seed) {
+    const TetMesh box = testing::uniform_box(n, n);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-jitter, jitter);
-    std::vector<Vec3> points;
-    auto id = [n](int i, int j, int k) {
-        return static_cast<PointId>(i + (n + 1) * (j + (n + 1) * k));
-    };
-    for (int k = 0; k <= n; ++k) {
-        for (int j = 0; j <= n; ++j) {
-            for (int i = 0; i <= n; ++i) {
-                Vec3 p(i, j, k);
-                for (int a = 0; a < 3; ++a) {
-                    const int c = a == 0 ? i : (a == 1 ? j : k);
-                    if (c > 0 && c < n) p[a] += u(rng);
-                }
-                points.push_back(p);
-            }
-        }
-    }
-    std::vector<Tet> tets;
-    // The six Kuhn tets: paths 0 -> 7 through the cube's corners along +x, +y, +z in any order.
-    const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-    for (int k = 0; k < n; ++k) {
-        for (int j = 0; j < n; ++j) {
-            for (int i = 0; i < n; ++i) {
-                for (const auto& path : paths) {
-                    int c[3] = {i, j, k};
-                    Tet t;
-                    t[0] = id(c[0], c[1], c[2]);
-                    for (int s = 0; s < 3; ++s) {
-                        ++c[path[s]];
-                        t[s + 1] = id(c[0], c[1], c[2]);
-                    }
-                    tets.push_back(t);
-                }
-            }
+    std::vector<Vec3> points = box.points();
+    for (Vec3& p : points) {
+        for (int a = 0; a < 3; ++a) {
+            if (p[a] > 0 && p[a] < n) p[a] += u(rng);
         }
     }
     GridMesh grid;
-    grid.mesh = TetMesh::create(std::move(points), std::move(tets)).value();
-    for (const Vec3& p : grid.mesh.points())
+    grid.mesh = TetMesh::create(std::move(points), box.tets()).value();
+    for (const Vec3& p : grid.mesh.points()) {
         grid.scalar.push_back(static_cast<float>(linear_field(p)));
+    }
     return grid;
 }
 
