@@ -122,6 +122,89 @@ std::vector<std::string> gathered_notes(const std::vector<std::string>& mine, in
     return notes;
 }
 
+// What one rank measured of one render, for the stats rank 0 collects.
+struct RankRender {
+    RenderResult drawn;  // this rank's transparent picture and its pipeline's stats
+    double render_ms = 0;
+    double composite_ms = 0;  // the IceT call's wall time, waiting for the others included
+    CompositeStats icet;
+    bool drew = false;  // whether this rank had a share to draw
+};
+
+// Rank 0's stats: the run's, then one number per rank for each measure (`shares` zeroed when
+// they were kept from an earlier render). Collective.
+NamedStats collect_stats(const MpiWorld& world, const Scene& scene, const ShareStats& s, bool fresh,
+                         const RankRender& rank) {
+    NamedStats out;
+    const NamedStats& drawn = rank.drawn.stats;
+    const bool exact = all_ranks(!rank.drew || drawn.find("sort_exact") == nullptr ||
+                                 std::get<bool>(*drawn.find("sort_exact")));
+    const StatValue* compositing = drawn.find("compositing");
+    const std::int64_t merged_ranks =
+        sum_over_ranks(compositing && std::get<std::string>(*compositing) == "merged" ? 1 : 0);
+    const std::int64_t cut = sum_over_ranks(static_cast<std::int64_t>(s.tets_cut));
+    const std::int64_t pieces = sum_over_ranks(static_cast<std::int64_t>(s.pieces_made));
+    if (world.rank() == 0) {
+        out.set("ranks", world.size());
+        out.set("method", scene.method_name());
+        out.set("reading", s.reading);
+        out.set("volumes_kept", !fresh);
+        out.set("tets_cut", cut);
+        out.set("pieces_made", pieces);
+        if (scene.method_name() == kDefaultMethod) out.set("sort_exact", exact);
+        out.set("ranks_merged", merged_ranks);
+        out.set("threads", thread_count());
+        out.set("width", scene.width);
+        out.set("height", scene.height);
+    }
+    const std::pair<const char*, double> per_rank[] = {
+        {"files_read", static_cast<double>(s.files_read)},
+        {"cells_read", static_cast<double>(s.cells_read)},
+        {"cells", static_cast<double>(s.cells)},
+        {"volume", s.volume},
+        {"read_ms", s.read_ms},
+        {"partition_ms", s.partition_ms},
+        {"cut_ms", s.cut_ms},
+        {"exchange_ms", s.exchange_ms},
+        {"merge_ms", s.merge_ms},
+        {"redistribute_ms", s.redistribute_ms},
+        {"bytes_sent", static_cast<double>(s.bytes_sent)},
+        {"adjacency_ms", drawn.number("adjacency_ms")},
+        {"convexify_ms", drawn.number("convexify_ms")},
+        {"shader_ms", drawn.number("shader_ms")},
+        {"sort_ms", drawn.number("sort_ms")},
+        {"raster_ms", drawn.number("raster_ms")},
+        {"fragments", drawn.number("fragments")},
+        {"render_ms", rank.render_ms},
+        {"composite_ms", rank.composite_ms},
+        {"icet_composite_ms", rank.icet.composite_ms},
+        {"composite_bytes_sent", static_cast<double>(rank.icet.bytes_sent)},
+    };
+    for (const auto& [key, value] : per_rank) {
+        std::vector<double> all = gather_to_root(value);
+        if (world.rank() == 0) out.set(key, all);
+    }
+    return out;
+}
+
+// Rank 0's picture: the blend `rgba` (premultiplied) over the opaque surfaces' picture, or the
+// background.
+Result<Image> over_what_is_behind(Pipeline& pipeline, const Scene& scene, const CameraFrame& frame,
+                                  const std::vector<float>& rgba) {
+    Image behind(scene.width, scene.height, Vec3f(scene.background));
+    if (!scene.opaque.empty()) {
+        TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
+        behind = render_opaque(opaque.layers(), frame, scene.background).color;
+    }
+    Image picture(scene.width, scene.height);
+    for (std::size_t i = 0; i < picture.pixels.size(); ++i) {
+        const float transmitted = 1.0f - rgba[4 * i + 3];
+        picture.pixels[i] =
+            Vec3f(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]) + transmitted * behind.pixels[i];
+    }
+    return picture;
+}
+
 }  // namespace
 
 struct DistributedRenderer::Impl {
@@ -135,8 +218,10 @@ struct DistributedRenderer::Impl {
     Impl(const MpiWorld& w, PipelineOptions o) : world(w), options(o), pipeline(std::move(o)) {}
 
     Result<DistributedResult> render(const Scene& scene, const RenderOptions& options);
-    // Steps 4 and 5: this rank's picture, composited; the result on rank 0.
-    Result<DistributedResult> draw_and_composite(const Scene& scene, const RenderOptions& options);
+    // Steps 4 and 5: this rank's picture, composited; the result on rank 0. `fresh`: this
+    // render read and redistributed the volumes (their stats are reported).
+    Result<DistributedResult> draw_and_composite(const Scene& scene, const RenderOptions& options,
+                                                 bool fresh);
 };
 
 Result<DistributedResult> DistributedRenderer::Impl::render(const Scene& scene,
@@ -148,112 +233,53 @@ Result<DistributedResult> DistributedRenderer::Impl::render(const Scene& scene,
         return pipeline.check(scene, transparent);
     })));
     const std::string wanted = volumes_key(scene);
-    if (!shares || key != wanted) {
+    const bool fresh = !shares || key != wanted;
+    if (fresh) {
         shares.reset();
         pipeline.clear();
         TR_TRY(Shares made, read_and_redistribute(world, scene, options.load));
         shares = std::make_unique<Shares>(std::move(made));
         key = wanted;
     }
-    return draw_and_composite(scene, transparent);
+    return draw_and_composite(scene, transparent, fresh);
 }
 
 Result<DistributedResult> DistributedRenderer::Impl::draw_and_composite(
-    const Scene& scene, const RenderOptions& options) {
-    const auto start = Clock::now();
-    const int width = scene.width, height = scene.height;
+    const Scene& scene, const RenderOptions& options, bool fresh) {
     // 4. This rank's share drawn over transparent black.
-    RenderResult drawn;
+    RankRender rank;
+    auto start = Clock::now();
     const Scene local = share_scene(scene, *shares, world.rank());
+    rank.drew = !local.volumes.empty();
     const Status rendered = guarded([&]() -> Status {
-        if (local.volumes.empty()) return {};
-        TR_TRY(drawn, pipeline.render(local, options));
+        if (!rank.drew) return {};
+        TR_TRY(rank.drawn, pipeline.render(local, options));
         return {};
     });
     TR_TRY_STATUS(world.agree(rendered));
-    const double render_ms = ms_since(start);
+    rank.render_ms = ms_since(start);
 
     // 5. Blended in the boxes' order for this view, then over what lies behind the volume.
-    const CameraFrame frame(scene.camera, width, height);
-    const std::vector<int> order = shares->partition.front_to_back(frame);
-    const std::vector<float> rgba = rgba_of(drawn, width, height);
-    CompositeStats composite;
-    const auto composite_start = Clock::now();
+    const CameraFrame frame(scene.camera, scene.width, scene.height);
+    const std::vector<float> rgba = rgba_of(rank.drawn, scene.width, scene.height);
+    start = Clock::now();
     Result<std::vector<float>> blended = compositor.composite(
-        rgba, width, height, nonzero_rect(rgba, width, height), order, &composite);
+        rgba, scene.width, scene.height, nonzero_rect(rgba, scene.width, scene.height),
+        shares->partition.front_to_back(frame), &rank.icet);
     TR_TRY_STATUS(world.agree(blended.ok() ? Status() : Status(blended.error())));
-    const double composite_wall_ms = ms_since(composite_start);
-
+    rank.composite_ms = ms_since(start);
     DistributedResult result;
     const Status finished = guarded([&]() -> Status {
         if (world.rank() != 0) return {};
-        Image behind(width, height, Vec3f(scene.background));
-        if (!scene.opaque.empty()) {
-            TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
-            behind = render_opaque(opaque.layers(), frame, scene.background).color;
-        }
-        result.image = Image(width, height);
-        const std::vector<float>& c = *blended;
-        for (std::size_t i = 0; i < result.image.pixels.size(); ++i) {
-            const float transmitted = 1.0f - c[4 * i + 3];
-            result.image.pixels[i] =
-                Vec3f(c[4 * i], c[4 * i + 1], c[4 * i + 2]) + transmitted * behind.pixels[i];
-        }
+        TR_TRY(result.image, over_what_is_behind(pipeline, scene, frame, *blended));
         return {};
     });
     TR_TRY_STATUS(world.agree(finished));
 
-    // Stats: rank 0 collects every rank's.
-    const ShareStats& s = shares->stats;
-    auto per_rank = [&](const char* key, double value) {
-        std::vector<double> all = gather_to_root(value);
-        if (world.rank() == 0) result.stats.set(key, all);
-    };
-    const bool exact =
-        all_ranks(local.volumes.empty() || drawn.stats.find("sort_exact") == nullptr ||
-                  std::get<bool>(*drawn.stats.find("sort_exact")));
-    const std::int64_t merged_ranks =
-        sum_over_ranks(drawn.stats.find("compositing") &&
-                               std::get<std::string>(*drawn.stats.find("compositing")) == "merged"
-                           ? 1
-                           : 0);
-    const std::int64_t cut = sum_over_ranks(static_cast<std::int64_t>(s.tets_cut));
-    const std::int64_t pieces = sum_over_ranks(static_cast<std::int64_t>(s.pieces_made));
-    if (world.rank() == 0) {
-        NamedStats& out = result.stats;
-        out.set("ranks", world.size());
-        out.set("method", scene.method_name());
-        out.set("reading", s.reading);
-        out.set("tets_cut", cut);
-        out.set("pieces_made", pieces);
-        if (scene.method_name() == kDefaultMethod) out.set("sort_exact", exact);
-        out.set("ranks_merged", merged_ranks);
-        out.set("threads", thread_count());
-        out.set("width", width);
-        out.set("height", height);
-    }
-    per_rank("files_read", static_cast<double>(s.files_read));
-    per_rank("cells_read", static_cast<double>(s.cells_read));
-    per_rank("cells", static_cast<double>(s.cells));
-    per_rank("volume", s.volume);
-    per_rank("read_ms", s.read_ms);
-    per_rank("partition_ms", s.partition_ms);
-    per_rank("cut_ms", s.cut_ms);
-    per_rank("exchange_ms", s.exchange_ms);
-    per_rank("merge_ms", s.merge_ms);
-    per_rank("redistribute_ms", s.redistribute_ms);
-    per_rank("bytes_sent", static_cast<double>(s.bytes_sent));
-    per_rank("adjacency_ms", drawn.stats.number("adjacency_ms"));
-    per_rank("convexify_ms", drawn.stats.number("convexify_ms"));
-    per_rank("shader_ms", drawn.stats.number("shader_ms"));
-    per_rank("sort_ms", drawn.stats.number("sort_ms"));
-    per_rank("raster_ms", drawn.stats.number("raster_ms"));
-    per_rank("fragments", drawn.stats.number("fragments"));
-    per_rank("render_ms", render_ms);
-    per_rank("composite_ms", composite_wall_ms);
-    per_rank("icet_composite_ms", composite.composite_ms);
-    per_rank("composite_bytes_sent", static_cast<double>(composite.bytes_sent));
-    std::vector<std::string> notes = gathered_notes(drawn.notes, world.rank());
+    // The volumes' reading and redistribution, on the render that did them (zeros after).
+    const ShareStats made = fresh ? shares->stats : ShareStats{.reading = shares->stats.reading};
+    result.stats = collect_stats(world, scene, made, fresh, rank);
+    std::vector<std::string> notes = gathered_notes(rank.drawn.notes, world.rank());
     if (world.rank() == 0) result.notes = std::move(notes);
     return result;
 }

@@ -87,43 +87,37 @@ std::vector<Vec3> gather_to_all(std::span<const Vec3> mine) {
     return all;
 }
 
-std::vector<TetPiece> exchange_pieces(const std::vector<std::vector<TetPiece>>& to_rank,
-                                      std::uint64_t* bytes_sent) {
+std::vector<TetPiece> exchange_pieces(const PiecesByRank& out, std::uint64_t* bytes_sent) {
     static_assert(sizeof(TetPiece) == 16 * sizeof(double));
     const int size = world_size();
     const int rank = world_rank();
-    std::size_t pieces = 0;
-    for (const auto& list : to_rank) pieces += list.size();
-    check_counts_fit(pieces <= kMaxCount);
+    check_counts_fit(out.pieces.size() <= kMaxCount);
     MPI_Datatype piece_type;
     MPI_Type_contiguous(16, MPI_DOUBLE, &piece_type);
     MPI_Type_commit(&piece_type);
     std::vector<int> send_counts(static_cast<std::size_t>(size)), send_offsets(send_counts.size());
-    std::size_t total = 0;
     std::uint64_t sent = 0;
     for (int r = 0; r < size; ++r) {
-        send_counts[r] = as_count(to_rank[r].size());
-        send_offsets[r] = as_count(total);
-        total += to_rank[r].size();
-        if (r != rank) sent += to_rank[r].size() * sizeof(TetPiece);
-    }
-    std::vector<TetPiece> send(total);
-    for (int r = 0; r < size; ++r) {
-        std::copy(to_rank[r].begin(), to_rank[r].end(), send.begin() + send_offsets[r]);
+        send_counts[r] = as_count(out.first[r + 1] - out.first[r]);
+        send_offsets[r] = as_count(out.first[r]);
+        if (r != rank) sent += static_cast<std::uint64_t>(send_counts[r]) * sizeof(TetPiece);
     }
     std::vector<int> receive_counts(send_counts.size()), receive_offsets(send_counts.size());
     MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
     std::size_t received = 0;
+    for (int r = 0; r < size; ++r) received += static_cast<std::size_t>(receive_counts[r]);
+    check_counts_fit(received <= kMaxCount);
+    received = 0;
     for (int r = 0; r < size; ++r) {
         receive_offsets[r] = as_count(received);
         received += static_cast<std::size_t>(receive_counts[r]);
     }
-    std::vector<TetPiece> out(received);
-    MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), piece_type, out.data(),
+    std::vector<TetPiece> in(received);
+    MPI_Alltoallv(out.pieces.data(), send_counts.data(), send_offsets.data(), piece_type, in.data(),
                   receive_counts.data(), receive_offsets.data(), piece_type, MPI_COMM_WORLD);
     MPI_Type_free(&piece_type);
     if (bytes_sent) *bytes_sent = sent;
-    return out;
+    return in;
 }
 
 std::vector<double> gather_to_root(double value) {

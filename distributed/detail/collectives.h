@@ -21,11 +21,16 @@ Bounds3 bounds_over_ranks(const Bounds3& bounds);
 // Every rank's points, concatenated in rank order, on every rank.
 std::vector<Vec3> gather_to_all(std::span<const Vec3> mine);
 
-// Sends to_rank[r] to rank r and returns what every rank sent here, concatenated in rank order
+// Tets to send, grouped by the rank they go to: rank r's are pieces[first[r] .. first[r + 1]).
+struct PiecesByRank {
+    std::vector<TetPiece> pieces;
+    std::vector<std::size_t> first;  // one more than the number of ranks
+};
+
+// Sends each rank its group and returns what every rank sent here, concatenated in rank order
 // (what this rank sent itself included). `bytes_sent`: what left this rank for others.
-// Precondition: to_rank.size() == number of ranks; fewer than 2^31 pieces to any one rank.
-std::vector<TetPiece> exchange_pieces(const std::vector<std::vector<TetPiece>>& to_rank,
-                                      std::uint64_t* bytes_sent);
+// Precondition: one group per rank; fewer than 2^31 pieces to any one rank.
+std::vector<TetPiece> exchange_pieces(const PiecesByRank& out, std::uint64_t* bytes_sent);
 
 // Every rank's value on rank 0, in rank order (empty elsewhere).
 std::vector<double> gather_to_root(double value);

@@ -118,10 +118,11 @@ KdPartition partition_of(const std::vector<Share>& shares, int size, std::int64_
     return KdPartition::balanced(cells, size, domain);
 }
 
-// Step 3's cutting: every tet's pieces, by the rank that owns them. Blocks of tets are cut
-// concurrently and their pieces joined in block order (the same whatever the thread count).
-std::vector<std::vector<TetPiece>> cut_all(const KdPartition& partition,
-                                           const std::vector<TetPiece>& tets, CutStats* stats) {
+// Step 3's cutting: every tet's pieces, grouped by the rank that owns them. Blocks of tets are
+// cut concurrently and their pieces joined in block order (the same whatever the thread
+// count), each block's freed as it is copied.
+PiecesByRank cut_all(const KdPartition& partition, const std::vector<TetPiece>& tets,
+                     CutStats* stats) {
     constexpr std::size_t kBlock = 1 << 14;
     const std::size_t parts = static_cast<std::size_t>(partition.num_parts());
     const std::size_t blocks = (tets.size() + kBlock - 1) / kBlock;
@@ -140,13 +141,16 @@ std::vector<std::vector<TetPiece>> cut_all(const KdPartition& partition,
         }
     });
     if (std::find(failed.begin(), failed.end(), 1) != failed.end()) throw std::bad_alloc();
-    std::vector<std::vector<TetPiece>> to_rank(parts);
+    PiecesByRank out;
+    out.first.assign(parts + 1, 0);
     for (std::size_t p = 0; p < parts; ++p) {
-        std::size_t n = 0;
-        for (const auto& block : by_block) n += block[p].size();
-        to_rank[p].reserve(n);
+        out.first[p + 1] = out.first[p];
+        for (const auto& block : by_block) out.first[p + 1] += block[p].size();
+    }
+    out.pieces.reserve(out.first[parts]);
+    for (std::size_t p = 0; p < parts; ++p) {
         for (auto& block : by_block) {
-            to_rank[p].insert(to_rank[p].end(), block[p].begin(), block[p].end());
+            out.pieces.insert(out.pieces.end(), block[p].begin(), block[p].end());
             block[p] = {};
         }
     }
@@ -155,7 +159,7 @@ std::vector<std::vector<TetPiece>> cut_all(const KdPartition& partition,
         stats->cut += s.cut;
         stats->pieces += s.pieces;
     }
-    return to_rank;
+    return out;
 }
 
 }  // namespace
@@ -203,9 +207,8 @@ Result<Shares> read_and_redistribute(const MpiWorld& world, const Scene& scene,
     for (std::size_t v = 0; v < scene.volumes.size(); ++v) {
         start = Clock::now();
         CutStats cut;
-        auto to_rank = guarded([&]() -> Result<std::vector<std::vector<TetPiece>>> {
-            return cut_all(out.partition, shares[v].tets, &cut);
-        });
+        auto to_rank = guarded(
+            [&]() -> Result<PiecesByRank> { return cut_all(out.partition, shares[v].tets, &cut); });
         TR_TRY_STATUS(world.agree(to_rank.ok() ? Status() : Status(to_rank.error())));
         shares[v].tets = {};
         stats.tets_cut += cut.cut;
@@ -220,7 +223,7 @@ Result<Shares> read_and_redistribute(const MpiWorld& world, const Scene& scene,
         });
         TR_TRY_STATUS(world.agree(exchanged));
         stats.bytes_sent += sent;
-        to_rank = std::vector<std::vector<TetPiece>>();
+        to_rank = PiecesByRank();
         stats.exchange_ms += ms_since(start);
         start = Clock::now();
         std::shared_ptr<const TetMesh> mesh;

@@ -12,8 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <pipeline/loaded_mesh.h>
 #include <string>
 #include <vector>
@@ -29,9 +31,15 @@ using testing::shell_quote;
 // `tetrender-mpi render ARGS` on `ranks` processes, oversubscribed on this machine's cores,
 // killed after two minutes (a hang is a failure, exit 124).
 CliRun run_mpi(int ranks, const std::string& args) {
+    // Under AddressSanitizer, OpenMPI's own allocations kept to the end are leaks that
+    // scripts/lsan.supp names by library; the suppressions match only with full stacks (fast
+    // unwinding stops inside OpenMPI's plugins, which have no frame pointers).
+    const char* asan = std::getenv("ASAN_OPTIONS");
     const std::string env =
         "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-        "OMPI_MCA_btl_vader_single_copy_mechanism=none ";
+        "OMPI_MCA_btl_vader_single_copy_mechanism=none " +
+        (asan ? "ASAN_OPTIONS=" + shell_quote(std::string(asan) + ":fast_unwind_on_malloc=0") + " "
+              : std::string());
     return run_captured(env + "timeout 120 " + shell_quote(TETRENDER_MPIEXEC) +
                         " --oversubscribe --bind-to none -np " + std::to_string(ranks) + " " +
                         shell_quote(TETRENDER_MPI_CLI) + " render " + args);
@@ -46,7 +54,7 @@ std::string data(const std::string& relative) {
 void write_quick_scene(const std::string& mesh, const std::string& scalar, const std::string& scene,
                        const std::string& extra = "") {
     const CliRun run = run_cli("render " + shell_quote(mesh) + " --scalar " + scalar +
-                               " --size 160x120 --legend off " + extra + " --write-scene " +
+                               " --size 128x96 --legend off " + extra + " --write-scene " +
                                shell_quote(scene) + " -o " + shell_quote(scene + ".png"));
     ASSERT_EQ(run.exit_code, 0) << run.err;
 }
@@ -58,15 +66,19 @@ struct Pictures {
 };
 
 // The scene drawn by one process and by `ranks` (one thread each: the ranks share 2 cores).
+// One process draws it once per scene and options (later calls read that picture back).
 Pictures render_both(const std::string& scene, int ranks, const std::string& options = "") {
     Pictures out;
-    const std::string single = scene + ".single.pfm";
+    const std::string single =
+        scene + ".single" + std::to_string(std::hash<std::string>{}(options)) + ".pfm";
     const std::string distributed = scene + ".k" + std::to_string(ranks) + ".pfm";
-    CliRun run =
-        run_cli("render " + shell_quote(scene) + " " + options + " -o " + shell_quote(single));
-    EXPECT_EQ(run.exit_code, 0) << run.err;
-    run = run_mpi(ranks, shell_quote(scene) + " --threads 1 --stats " + options + " -o " +
-                             shell_quote(distributed));
+    if (!std::filesystem::exists(single)) {
+        const CliRun run =
+            run_cli("render " + shell_quote(scene) + " " + options + " -o " + shell_quote(single));
+        EXPECT_EQ(run.exit_code, 0) << run.err;
+    }
+    const CliRun run = run_mpi(ranks, shell_quote(scene) + " --threads 1 --stats " + options +
+                                          " -o " + shell_quote(distributed));
     EXPECT_EQ(run.exit_code, 0) << run.err << run.out;
     out.single = testing::read_pfm(single);
     out.distributed = testing::read_pfm(distributed);
@@ -133,8 +145,8 @@ TEST_F(DistributedRender, ConvexMeshEqualsOneProcess) {
     const std::string mesh = data("office/office.binary.vtk");
     const std::string scene = dir_ + "/office.json";
     write_quick_scene(mesh, "scalars", scene);
-    // Measured: identical for one rank; 113-149 dB over the foreground for 2-4 ranks, the
-    // largest difference 8e-5 (the issue asks for 60 dB and 2 levels at most).
+    // Measured: identical for one rank; 115-148 dB over the foreground for 2-4 ranks, the
+    // largest difference 7e-5 (the issue asks for 60 dB and 2 levels at most).
     expect_same_pictures(scene, mesh, "office", 100.0, 3e-4);
 }
 
@@ -144,7 +156,7 @@ TEST_F(DistributedRender, NonConvexMeshEqualsOneProcess) {
     const std::string mesh = data("disk_out_ref/disk_out_ref.ex2");
     const std::string scene = dir_ + "/disk.json";
     write_quick_scene(mesh, "Temp", scene, "--azimuth 30 --elevation 20");
-    // Measured: identical for one rank; 115-134 dB for 2-4 ranks, the largest difference 3e-5.
+    // Measured: identical for one rank; 115-140 dB for 2-4 ranks, the largest difference 2e-5.
     expect_same_pictures(scene, mesh, "disk", 100.0, 3e-4);
 }
 
@@ -207,7 +219,7 @@ TEST_F(DistributedRender, PvtuPiecesAreReadByTheRanksThemselves) {
     for (int ranks = 1; ranks <= 4; ++ranks) {
         SCOPED_TRACE(ranks);
         const Pictures p = render_both(scene, ranks);
-        // Measured: as the same mesh from one file (identical, then 115-134 dB, 3e-5).
+        // Measured: as the same mesh from one file (identical, then 115-140 dB, 2e-5).
         EXPECT_TRUE(testing::images_match(p.distributed, p.single, Vec3f(0.0f), {100.0, 3e-4},
                                           "pvtu_k" + std::to_string(ranks)));
         EXPECT_EQ(p.stats["reading"], "pieces");
@@ -255,7 +267,7 @@ TEST_F(DistributedRender, AnOpaqueSurfaceStopsEveryRanksRays) {
     for (int ranks : {2, 3}) {
         SCOPED_TRACE(ranks);
         const Pictures p = render_both(scene, ranks);
-        // Measured: 115-147 dB, the largest difference 8e-5.
+        // Measured: 116-146 dB, the largest difference 7e-5.
         EXPECT_TRUE(testing::images_match(p.distributed, p.single, Vec3f(0.0f), {100.0, 3e-4},
                                           "plate_k" + std::to_string(ranks)));
     }

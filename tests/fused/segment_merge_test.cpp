@@ -155,13 +155,8 @@ struct AlphaScene {
     SegmentShader a_shader{a_tf, Integrator::kPreintegrated, longest_edge(a_mesh)};
     SegmentShader b_shader{b_tf, Integrator::kPreintegrated, longest_edge(b_mesh)};
     CameraFrame frame{testing::camera_at({3.5, 2.5, 14}, {1.5, 1.5, 1.5}, false, 30), 64, 64};
-    SurfaceMesh plane = [] {
-        SurfaceMesh p;  // z = 0.5 + 0.3 x
-        p.points = {{-1, -1, 0.2}, {4, -1, 1.7}, {4, 4, 1.7}, {-1, 4, 0.2}};
-        p.triangles = {{0, 1, 2}, {0, 2, 3}};
-        return p;
-    }();
-    OpaqueLayer layer = render_opaque({{&plane, Vec3(0.2, 0.9, 0.3)}}, frame, Vec3(0.4, 0.35, 0.3));
+    SurfaceMesh plane = testing::tilted_plane(-1, 4, 0.2, 1.7);  // z = 0.5 + 0.3 x
+    OpaqueLayer layer = testing::plane_layer(plane, frame);
 
     VolumeScene scene(const Vec3& background, bool opaque_depth, bool opaque_color) const {
         VolumeScene s;
@@ -182,69 +177,30 @@ struct AlphaScene {
 TEST(SegmentMerge, AlphaComposesThePictureOverAnyBackgroundFromTheOneOverBlack) {
     const AlphaScene s;
     ASSERT_GT(s.layer.pixels_covered, 1000u);
-    const Vec3 background(0.3, 0.6, 0.9);
-    std::vector<float> alpha, alpha_b, alpha_cut;
-    SegmentMergeStats stats;
-    const Image black = render_segment_merge(s.scene(Vec3(0.0), false, false), &stats, &alpha);
-    EXPECT_GT(stats.overlap_intervals, 1000u);  // the overlap's integration is composited too
-    const Image over_b = render_segment_merge(s.scene(background, false, false), nullptr, &alpha_b);
-    ASSERT_EQ(alpha.size(), black.pixels.size());
-    EXPECT_TRUE(testing::bit_identical(alpha, alpha_b));
-    const testing::AlphaCheck c =
-        testing::check_alpha(black, alpha, over_b, Image(64, 64, Vec3f(background)));
-    const Image black_cut =
-        render_segment_merge(s.scene(Vec3(0.0), true, false), nullptr, &alpha_cut);
-    const Image over_layer = render_segment_merge(s.scene(Vec3(0.0), true, true));
-    const testing::AlphaCheck cut =
-        testing::check_alpha(black_cut, alpha_cut, over_layer, s.layer.color);
-    std::printf(
-        "[ merge alpha ] largest difference %.2g over a background, %.2g over opaque geometry; "
-        "alpha in [%g, %g]; %zu pixels 0, %zu partial, %zu above 0.99\n",
-        c.largest_difference, cut.largest_difference, c.min_alpha, c.max_alpha,
-        c.pixels_transparent, c.pixels_partial, c.pixels_opaque);
+    SegmentMergeStats stats;  // of the volumes alone, not cut by the layer
+    auto render = [&](const Vec3& background, bool depth, bool color, std::vector<float>* alpha) {
+        return render_segment_merge(s.scene(background, depth, color), depth ? nullptr : &stats,
+                                    alpha);
+    };
+    testing::AlphaRun r;
     // Measured 7.2e-8 and 8.1e-8 (float rounding of the picture and of alpha); bound 1e-6.
-    EXPECT_LE(c.largest_difference, 1e-6) << "at " << c.worst_x << ", " << c.worst_y;
-    EXPECT_LE(cut.largest_difference, 1e-6) << "at " << cut.worst_x << ", " << cut.worst_y;
-    EXPECT_GE(std::min(c.min_alpha, cut.min_alpha), 0.0f);
-    EXPECT_LE(std::max(c.max_alpha, cut.max_alpha), 1.0f);
-    EXPECT_GT(c.pixels_partial, 200u);
-    EXPECT_GT(c.pixels_opaque, 100u);
-    std::size_t missed = 0, lowered = 0;
-    for (int j = 0; j < 64; ++j) {
-        for (int i = 0; i < 64; ++i) {
-            const std::size_t p = static_cast<std::size_t>(j) * 64 + i;
-            if (testing::misses_box(s.frame.pixel_ray(i, j), 0.0, 3.0, 1e-3)) {
-                ++missed;
-                EXPECT_EQ(alpha[p], 0.0f) << i << ", " << j;
-                EXPECT_EQ(alpha_cut[p], 0.0f) << i << ", " << j;
-            }
-            EXPECT_LE(alpha_cut[p], alpha[p] + 1e-6f) << i << ", " << j;
-            lowered += alpha_cut[p] < alpha[p] - 0.05f;
-        }
-    }
-    std::printf("[ alpha ] %zu pixels missed, %zu lowered by the opaque layer\n", missed, lowered);
+    ASSERT_NO_FATAL_FAILURE(testing::expect_alpha_composes(
+        "merge alpha", render, Vec3(0.3, 0.6, 0.9), s.layer.color, 1e-6, &r));
+    EXPECT_GT(stats.overlap_intervals, 1000u);  // the overlap's integration is composited too
+    const testing::AlphaCounts n = testing::count_missed_and_lowered(s.frame, r, 3.0, 1e-3, 1e-6f);
     // Measured 3047 pixels missed, 359 lowered (the plane cuts segments).
-    EXPECT_GT(missed, 2500u);
-    EXPECT_GT(lowered, 250u);
-    const Vec3 q = s.frame.project(Vec3(2.6, 1.5, 1.5));
-    EXPECT_GT(alpha[static_cast<std::size_t>(q.y) * 64 + static_cast<int>(q.x)], 0.99f);
+    EXPECT_GT(n.missed, 2500u);
+    EXPECT_GT(n.lowered, 250u);
+    EXPECT_GT(r.alpha[testing::pixel_of(s.frame, Vec3(2.6, 1.5, 1.5))], 0.99f);
 }
 
 TEST(SegmentMerge, AskingForAlphaChangesNoBitOfThePicture) {
     const AlphaScene s;
-    const Vec3 background(0.3, 0.6, 0.9);
-    std::vector<float> alpha;
-    for (bool depth : {false, true}) {
-        for (bool color : {false, true}) {
-            SCOPED_TRACE(std::string(depth ? "opaque depth" : "") +
-                         (color ? " opaque colour" : ""));
-            const VolumeScene scene = s.scene(background, depth, color);
-            const Image without = render_segment_merge(scene);
-            const Image with = render_segment_merge(scene, nullptr, &alpha);
-            EXPECT_LT(psnr(without, Image(64, 64, Vec3f(background))), 30.0);  // not blank
-            EXPECT_TRUE(testing::bit_identical(without, with));
-        }
-    }
+    testing::expect_alpha_changes_no_bit(
+        [&](const Vec3& background, bool depth, bool color, std::vector<float>* alpha) {
+            return render_segment_merge(s.scene(background, depth, color), nullptr, alpha);
+        },
+        Vec3(0.3, 0.6, 0.9));
 }
 
 }  // namespace

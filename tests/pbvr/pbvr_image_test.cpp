@@ -9,14 +9,12 @@
 #include <project/reference_raycaster.h>
 #include <tests/pbvr/pbvr_alpha_scene.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
-#include <tests/project/alpha_check.h>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <string>
 #include <vector>
 
 namespace tr {
@@ -257,90 +255,34 @@ ImagePbvrOptions alpha_options(const AlphaVariant& v) {
     return options;
 }
 
+// The render callable of the alpha checks (tests/project/alpha_check.h) for variant `v`.
+auto alpha_render(const testing::PbvrAlphaScene& s, const AlphaVariant& v) {
+    return [&s, v, options = alpha_options(v)](const Vec3& background, bool depth, bool color,
+                                               std::vector<float>* alpha) {
+        return render_image_pbvr(s.scene(background, depth, color, v.shader, v.fused), options,
+                                 nullptr, alpha);
+    };
+}
+
 // The picture over a non-black background, and over an opaque layer's colour, is the picture
 // over black (with the layer's depth, no colour: how a rank renders its part; same seed) plus
 // (1 - alpha) times what is behind; alpha lies in [0, 1], is exactly 0 where the rays miss the
 // volumes, above 0.99 where they are opaque, and the opaque layer lowers it.
 TEST(ImagePbvr, AlphaComposesThePictureOverAnyBackgroundFromTheOneOverBlack) {
     const testing::PbvrAlphaScene s;
-    ASSERT_GT(s.layer.pixels_covered, 1000u);
-    const Vec3 background(0.3, 0.6, 0.9);
-    const int w = s.frame.width(), h = s.frame.height();
-    double worst = 0;
-    for (const AlphaVariant& v : kAlphaVariants) {
-        SCOPED_TRACE(v.name);
-        const ImagePbvrOptions options = alpha_options(v);
-        auto scene = [&](const Vec3& b, bool depth, bool color) {
-            return s.scene(b, depth, color, v.shader, v.fused);
-        };
-        std::vector<float> alpha, alpha_b, alpha_cut;
-        const Image black =
-            render_image_pbvr(scene(Vec3(0.0), false, false), options, nullptr, &alpha);
-        const Image over_b =
-            render_image_pbvr(scene(background, false, false), options, nullptr, &alpha_b);
-        ASSERT_EQ(alpha.size(), black.pixels.size());
-        EXPECT_TRUE(testing::bit_identical(alpha, alpha_b));
-        const testing::AlphaCheck c =
-            testing::check_alpha(black, alpha, over_b, Image(w, h, Vec3f(background)));
-        const Image black_cut =
-            render_image_pbvr(scene(Vec3(0.0), true, false), options, nullptr, &alpha_cut);
-        const Image over_layer = render_image_pbvr(scene(Vec3(0.0), true, true), options);
-        const testing::AlphaCheck cut =
-            testing::check_alpha(black_cut, alpha_cut, over_layer, s.layer.color);
-        std::printf(
-            "[ image pbvr alpha, %s ] largest difference %.2g over a background, %.2g over "
-            "opaque geometry; alpha in [%g, %g]; %zu pixels 0, %zu partial, %zu above 0.99\n",
-            v.name, c.largest_difference, cut.largest_difference, c.min_alpha, c.max_alpha,
-            c.pixels_transparent, c.pixels_partial, c.pixels_opaque);
-        worst = std::max({worst, c.largest_difference, cut.largest_difference});
-        // Measured at most 6.6e-8 over the variants (float rounding); bound 1e-6.
-        EXPECT_LE(c.largest_difference, 1e-6) << "at " << c.worst_x << ", " << c.worst_y;
-        EXPECT_LE(cut.largest_difference, 1e-6) << "at " << cut.worst_x << ", " << cut.worst_y;
-        EXPECT_GE(std::min(c.min_alpha, cut.min_alpha), 0.0f);
-        EXPECT_LE(std::max(c.max_alpha, cut.max_alpha), 1.0f);
-        EXPECT_GT(c.pixels_partial, 200u);
-        EXPECT_GT(c.pixels_opaque, 100u);
-        std::size_t missed = 0, lowered = 0;
-        for (int j = 0; j < h; ++j) {
-            for (int i = 0; i < w; ++i) {
-                const std::size_t p = static_cast<std::size_t>(j) * w + i;
-                if (testing::misses_box(s.frame.pixel_ray(i, j), 0.0, 3.0, 1e-3)) {
-                    ++missed;
-                    EXPECT_EQ(alpha[p], 0.0f) << i << ", " << j;
-                    EXPECT_EQ(alpha_cut[p], 0.0f) << i << ", " << j;
-                }
-                lowered += alpha_cut[p] < alpha[p] - 0.05f;
-            }
-        }
-        std::printf("[ alpha ] %zu pixels missed, %zu lowered by the opaque layer\n", missed,
-                    lowered);
-        // Measured 3047 pixels missed, 233 to 288 lowered (the plane cuts segments).
-        EXPECT_GT(missed, 2500u);
-        EXPECT_GT(lowered, 180u);
-        EXPECT_GT(alpha[s.opaque_pixel()], 0.99f);
-    }
-    std::printf("[ image pbvr alpha ] largest difference over all: %.2g\n", worst);
+    // Measured at most 6.6e-8 over the variants (float rounding; bound 1e-6); 3047 pixels
+    // missed, 233 to 288 lowered (the plane cuts segments).
+    testing::expect_pbvr_alpha_composes(s, "image pbvr alpha", kAlphaVariants, alpha_render,
+                                        {.max_difference = 1e-6,
+                                         .margin = 1e-3,
+                                         .raise_slack = std::nullopt,
+                                         .min_missed = 2500,
+                                         .min_lowered = 180});
 }
 
 TEST(ImagePbvr, AskingForAlphaChangesNoBitOfThePicture) {
     const testing::PbvrAlphaScene s;
-    const Vec3 background(0.3, 0.6, 0.9);
-    std::vector<float> alpha;
-    for (const AlphaVariant& v : kAlphaVariants) {
-        const ImagePbvrOptions options = alpha_options(v);
-        for (bool depth : {false, true}) {
-            for (bool color : {false, true}) {
-                SCOPED_TRACE(std::string(v.name) + (depth ? ", opaque depth" : "") +
-                             (color ? ", opaque colour" : ""));
-                const VolumeScene scene = s.scene(background, depth, color, v.shader, v.fused);
-                const Image without = render_image_pbvr(scene, options);
-                const Image with = render_image_pbvr(scene, options, nullptr, &alpha);
-                EXPECT_LT(psnr(without, Image(without.width, without.height, Vec3f(background))),
-                          30.0);  // not a blank picture
-                EXPECT_TRUE(testing::bit_identical(without, with));
-            }
-        }
-    }
+    testing::expect_pbvr_alpha_changes_no_bit(s, kAlphaVariants, alpha_render);
 }
 
 // The uniform box, whose opacity per pixel ray is 1 - exp(-kappa chord) in closed form. With the
@@ -378,25 +320,15 @@ TEST(ImagePbvr, AlphaIsTheKnownOpacityWithTheControlVariateAndTheHitFractionWith
         // standard error: mean within 4 / sqrt(n) of 0; stratified, so a spread under 1).
         options.control_variate = false;
         (void)render_image_pbvr(scene, options, nullptr, &alpha);
-        double mean_z = 0, rms_z = 0, off_grid = 0;
-        std::size_t n = 0;
-        for (std::size_t p = 0; p < expected.size(); ++p) {
-            const double hits = alpha[p] * options.repetitions;
-            off_grid = std::max(off_grid, std::abs(hits - std::round(hits)));
-            const double a = expected[p];
-            if (a < 0.05 || a > 0.95) continue;
-            const double z = (alpha[p] - a) / std::sqrt(a * (1 - a) / options.repetitions);
-            mean_z += z, rms_z += z * z, ++n;
-        }
-        mean_z /= static_cast<double>(n);
-        rms_z = std::sqrt(rms_z / static_cast<double>(n));
+        const testing::HitFractions h =
+            testing::hit_fractions(alpha, expected, options.repetitions);
         std::printf("[ plain mean, %s ] %zu pixels: mean z %.3f, rms z %.3f\n",
-                    with_shader ? "mean colours" : "particle colours", n, mean_z, rms_z);
-        EXPECT_LT(off_grid, 1e-4);
-        ASSERT_GT(n, 1000u);
-        EXPECT_LT(std::abs(mean_z), 4.0 / std::sqrt(static_cast<double>(n)));
-        EXPECT_GT(rms_z, 0.05);  // not the known opacity: hits drawn
-        EXPECT_LT(rms_z, 1.15);
+                    with_shader ? "mean colours" : "particle colours", h.pixels, h.mean_z, h.rms_z);
+        EXPECT_LT(h.off_grid, 1e-4);
+        ASSERT_GT(h.pixels, 1000u);
+        EXPECT_LT(std::abs(h.mean_z), 4.0 / std::sqrt(static_cast<double>(h.pixels)));
+        EXPECT_GT(h.rms_z, 0.05);  // not the known opacity: hits drawn
+        EXPECT_LT(h.rms_z, 1.15);
     }
 }
 

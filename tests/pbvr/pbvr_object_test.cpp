@@ -8,7 +8,6 @@
 #include <project/reference_raycaster.h>
 #include <tests/pbvr/pbvr_alpha_scene.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
-#include <tests/project/alpha_check.h>
 
 #include <gtest/gtest.h>
 
@@ -147,158 +146,6 @@ TEST(ObjectPbvr, SameSeedSamePictureWhateverTheThreadCount) {
     const Image other = render_object_pbvr(scene, options);
     EXPECT_NE(
         std::memcmp(one.pixels.data(), other.pixels.data(), one.pixels.size() * sizeof(Vec3f)), 0);
-}
-
-// The object-space alpha tests' variants: one particle per pixel or 2 x 2 sub-pixels, one
-// volume or two in the same space.
-struct ObjectAlphaVariant {
-    const char* name;
-    int subpixel_level;
-    bool fused;
-};
-constexpr ObjectAlphaVariant kObjectAlphaVariants[] = {
-    {"1 x 1 sub-pixels", 1, false},
-    {"2 x 2 sub-pixels", 2, false},
-    {"2 x 2 sub-pixels, fused", 2, true},
-};
-
-ObjectPbvrOptions alpha_options(const ObjectAlphaVariant& v) {
-    ObjectPbvrOptions options;
-    options.repetitions = 8;
-    options.subpixel_level = v.subpixel_level;
-    options.seed = 13;
-    return options;
-}
-
-// The picture over a non-black background, and over an opaque layer's colour, is the picture
-// over black (with the layer's depth, no colour: how a rank renders its part; same seed) plus
-// (1 - alpha) times what is behind; alpha lies in [0, 1], is exactly 0 where no particle can
-// land (pixels whose centre ray misses the volumes by more than a pixel), above 0.99 where the
-// volume is opaque, and the opaque layer, dropping the particles behind it, lowers it.
-TEST(ObjectPbvr, AlphaComposesThePictureOverAnyBackgroundFromTheOneOverBlack) {
-    const testing::PbvrAlphaScene s;
-    ASSERT_GT(s.layer.pixels_covered, 1000u);
-    const Vec3 background(0.3, 0.6, 0.9);
-    const int w = s.frame.width(), h = s.frame.height();
-    double worst = 0;
-    for (const ObjectAlphaVariant& v : kObjectAlphaVariants) {
-        SCOPED_TRACE(v.name);
-        const ObjectPbvrOptions options = alpha_options(v);
-        auto scene = [&](const Vec3& b, bool depth, bool color) {
-            return s.scene(b, depth, color, false, v.fused);
-        };
-        std::vector<float> alpha, alpha_b, alpha_cut;
-        const Image black =
-            render_object_pbvr(scene(Vec3(0.0), false, false), options, nullptr, nullptr, &alpha);
-        const Image over_b = render_object_pbvr(scene(background, false, false), options, nullptr,
-                                                nullptr, &alpha_b);
-        ASSERT_EQ(alpha.size(), black.pixels.size());
-        EXPECT_TRUE(testing::bit_identical(alpha, alpha_b));
-        const testing::AlphaCheck c =
-            testing::check_alpha(black, alpha, over_b, Image(w, h, Vec3f(background)));
-        const Image black_cut = render_object_pbvr(scene(Vec3(0.0), true, false), options, nullptr,
-                                                   nullptr, &alpha_cut);
-        const Image over_layer = render_object_pbvr(scene(Vec3(0.0), true, true), options);
-        const testing::AlphaCheck cut =
-            testing::check_alpha(black_cut, alpha_cut, over_layer, s.layer.color);
-        std::printf(
-            "[ object pbvr alpha, %s ] largest difference %.2g over a background, %.2g over "
-            "opaque geometry; alpha in [%g, %g]; %zu pixels 0, %zu partial, %zu above 0.99\n",
-            v.name, c.largest_difference, cut.largest_difference, c.min_alpha, c.max_alpha,
-            c.pixels_transparent, c.pixels_partial, c.pixels_opaque);
-        worst = std::max({worst, c.largest_difference, cut.largest_difference});
-        // Measured at most 6.7e-8 over the variants (float rounding); bound 1e-6.
-        EXPECT_LE(c.largest_difference, 1e-6) << "at " << c.worst_x << ", " << c.worst_y;
-        EXPECT_LE(cut.largest_difference, 1e-6) << "at " << cut.worst_x << ", " << cut.worst_y;
-        EXPECT_GE(std::min(c.min_alpha, cut.min_alpha), 0.0f);
-        EXPECT_LE(std::max(c.max_alpha, cut.max_alpha), 1.0f);
-        EXPECT_GT(c.pixels_partial, 200u);
-        EXPECT_GT(c.pixels_opaque, 100u);
-        std::size_t missed = 0, lowered = 0;
-        for (int j = 0; j < h; ++j) {
-            for (int i = 0; i < w; ++i) {
-                const std::size_t p = static_cast<std::size_t>(j) * w + i;
-                // A pixel is about 0.12 wide at the box's far side.
-                if (testing::misses_box(s.frame.pixel_ray(i, j), 0.0, 3.0, 0.15)) {
-                    ++missed;
-                    EXPECT_EQ(alpha[p], 0.0f) << i << ", " << j;
-                    EXPECT_EQ(alpha_cut[p], 0.0f) << i << ", " << j;
-                }
-                // The same particles, those behind the plane dropped.
-                EXPECT_LE(alpha_cut[p], alpha[p]) << i << ", " << j;
-                lowered += alpha_cut[p] < alpha[p] - 0.05f;
-            }
-        }
-        std::printf("[ alpha ] %zu pixels missed, %zu lowered by the opaque layer\n", missed,
-                    lowered);
-        // Measured 2821 pixels missed, 174 to 259 lowered (particles behind the plane dropped).
-        EXPECT_GT(missed, 2300u);
-        EXPECT_GT(lowered, 130u);
-        EXPECT_GT(alpha[s.opaque_pixel()], 0.99f);
-    }
-    std::printf("[ object pbvr alpha ] largest difference over all: %.2g\n", worst);
-}
-
-TEST(ObjectPbvr, AskingForAlphaChangesNoBitOfThePicture) {
-    const testing::PbvrAlphaScene s;
-    const Vec3 background(0.3, 0.6, 0.9);
-    std::vector<float> alpha;
-    for (const ObjectAlphaVariant& v : kObjectAlphaVariants) {
-        const ObjectPbvrOptions options = alpha_options(v);
-        for (bool depth : {false, true}) {
-            for (bool color : {false, true}) {
-                SCOPED_TRACE(std::string(v.name) + (depth ? ", opaque depth" : "") +
-                             (color ? ", opaque colour" : ""));
-                const VolumeScene scene = s.scene(background, depth, color, false, v.fused);
-                const Image without = render_object_pbvr(scene, options);
-                const Image with = render_object_pbvr(scene, options, nullptr, nullptr, &alpha);
-                EXPECT_LT(psnr(without, Image(without.width, without.height, Vec3f(background))),
-                          30.0);  // not a blank picture
-                EXPECT_TRUE(testing::bit_identical(without, with));
-            }
-        }
-    }
-}
-
-// The uniform box: alpha is the fraction of the R x L^2 sub-pixel samples with a particle (a
-// multiple of 1 / (R L^2)), an unbiased estimate of the pixel's mean opacity 1 - exp(-kappa
-// chord) (z-scores of the binomial's standard error: mean within 4 / sqrt(n) of 0, rms near 1).
-TEST(ObjectPbvr, AlphaIsTheFractionOfSubpixelsWithAParticle) {
-    const TetMesh mesh = uniform_box(3, 3.0);
-    const std::vector<float> scalar(mesh.num_points(), 1.0f);
-    const TransferFunction tf =
-        TransferFunction::create({{1, {1.0, 0.7, 0.2}}}, {{1, 0.2}}, 1.0).value();
-    const double kappa = tf.extinction(1.0);
-    const CameraFrame frame(camera_at({4.6, -2.2, 3.8}, {1.2, 1.8, 1.0}, false, 70), 64, 64);
-    VolumeScene scene;
-    scene.volumes.push_back({&mesh, scalar, &tf});
-    scene.camera = &frame;
-    ObjectPbvrOptions options;
-    options.repetitions = 32;
-    options.subpixel_level = 2;
-    options.seed = 17;
-    std::vector<float> alpha;
-    (void)render_object_pbvr(scene, options, nullptr, nullptr, &alpha);
-    const double samples = options.repetitions * 4.0;
-    const std::vector<double> expected = uniform_box_coverage(frame, 3.0, kappa);
-    double mean_z = 0, rms_z = 0, off_grid = 0;
-    std::size_t n = 0;
-    for (std::size_t p = 0; p < expected.size(); ++p) {
-        const double hits = alpha[p] * samples;
-        off_grid = std::max(off_grid, std::abs(hits - std::round(hits)));
-        const double a = expected[p];
-        if (a < 0.05 || a > 0.95) continue;
-        const double z = (alpha[p] - a) / std::sqrt(a * (1 - a) / samples);
-        mean_z += z, rms_z += z * z, ++n;
-    }
-    mean_z /= static_cast<double>(n);
-    rms_z = std::sqrt(rms_z / static_cast<double>(n));
-    std::printf("[ object pbvr alpha ] %zu pixels: mean z %.3f, rms z %.3f\n", n, mean_z, rms_z);
-    EXPECT_LT(off_grid, 1e-4);
-    ASSERT_GT(n, 800u);
-    EXPECT_LT(std::abs(mean_z), 4.0 / std::sqrt(static_cast<double>(n)));
-    EXPECT_GT(rms_z, 0.85);
-    EXPECT_LT(rms_z, 1.15);
 }
 
 }  // namespace
@@ -443,6 +290,85 @@ TEST(ObjectParticleSet, RetargetRegeneratesWhatTheKeptParticlesCannotGive) {
                 kept.psnr_foreground, kept.foreground_pixels, fresh.psnr_foreground);
     EXPECT_GT(kept.foreground_pixels, 1000u);
     EXPECT_GT(kept.psnr_foreground, fresh.psnr_foreground - 1.5);
+}
+
+// The object-space alpha tests' variants: one particle per pixel or 2 x 2 sub-pixels, one
+// volume or two in the same space.
+struct ObjectAlphaVariant {
+    const char* name;
+    int subpixel_level;
+    bool fused;
+};
+constexpr ObjectAlphaVariant kObjectAlphaVariants[] = {
+    {"1 x 1 sub-pixels", 1, false},
+    {"2 x 2 sub-pixels", 2, false},
+    {"2 x 2 sub-pixels, fused", 2, true},
+};
+
+ObjectPbvrOptions alpha_options(const ObjectAlphaVariant& v) {
+    ObjectPbvrOptions options;
+    options.repetitions = 8;
+    options.subpixel_level = v.subpixel_level;
+    options.seed = 13;
+    return options;
+}
+
+// The render callable of the alpha checks (tests/project/alpha_check.h) for variant `v`.
+auto alpha_render(const testing::PbvrAlphaScene& s, const ObjectAlphaVariant& v) {
+    return [&s, v, options = alpha_options(v)](const Vec3& background, bool depth, bool color,
+                                               std::vector<float>* alpha) {
+        return render_object_pbvr(s.scene(background, depth, color, false, v.fused), options,
+                                  nullptr, nullptr, alpha);
+    };
+}
+
+// The picture over a non-black background, and over an opaque layer's colour, is the picture
+// over black (with the layer's depth, no colour: how a rank renders its part; same seed) plus
+// (1 - alpha) times what is behind; alpha lies in [0, 1], is exactly 0 where no particle can
+// land (pixels whose centre ray misses the volumes by more than a pixel), above 0.99 where the
+// volume is opaque, and the opaque layer, dropping the particles behind it, lowers it.
+TEST(ObjectPbvr, AlphaComposesThePictureOverAnyBackgroundFromTheOneOverBlack) {
+    const testing::PbvrAlphaScene s;
+    // Measured at most 6.7e-8 over the variants (float rounding; bound 1e-6); 2821 pixels
+    // missed, 174 to 259 lowered (particles behind the plane dropped). A pixel is about 0.12 wide
+    // at the box's far side; the layer drops the particles behind the plane and keeps the rest:
+    // alpha never raised.
+    testing::expect_pbvr_alpha_composes(s, "object pbvr alpha", kObjectAlphaVariants, alpha_render,
+                                        {.max_difference = 1e-6,
+                                         .margin = 0.15,
+                                         .raise_slack = 0.0f,
+                                         .min_missed = 2300,
+                                         .min_lowered = 130});
+}
+
+TEST(ObjectPbvr, AskingForAlphaChangesNoBitOfThePicture) {
+    const testing::PbvrAlphaScene s;
+    testing::expect_pbvr_alpha_changes_no_bit(s, kObjectAlphaVariants, alpha_render);
+}
+
+// The uniform box: alpha is the fraction of the R x L^2 sub-pixel samples with a particle (a
+// multiple of 1 / (R L^2)), an unbiased estimate of the pixel's mean opacity 1 - exp(-kappa
+// chord) (z-scores of the binomial's standard error: mean within 4 / sqrt(n) of 0, rms near 1).
+TEST(ObjectPbvr, AlphaIsTheFractionOfSubpixelsWithAParticle) {
+    const BoxScene box;
+    const TransferFunction tf = box_tf(0.2, box.color);
+    const CameraFrame frame(camera_at({4.6, -2.2, 3.8}, {1.2, 1.8, 1.0}, false, 70), 64, 64);
+    ObjectPbvrOptions options;
+    options.repetitions = 32;
+    options.subpixel_level = 2;
+    options.seed = 17;
+    std::vector<float> alpha;  // the volume's alone: whatever the background
+    (void)render_object_pbvr(particle_scene(box, tf, frame), options, nullptr, nullptr, &alpha);
+    const double samples = options.repetitions * 4.0;
+    const testing::HitFractions h = testing::hit_fractions(
+        alpha, uniform_box_coverage(frame, 3.0, tf.extinction(1.0)), samples);
+    std::printf("[ object pbvr alpha ] %zu pixels: mean z %.3f, rms z %.3f\n", h.pixels, h.mean_z,
+                h.rms_z);
+    EXPECT_LT(h.off_grid, 1e-4);
+    ASSERT_GT(h.pixels, 800u);
+    EXPECT_LT(std::abs(h.mean_z), 4.0 / std::sqrt(static_cast<double>(h.pixels)));
+    EXPECT_GT(h.rms_z, 0.85);
+    EXPECT_LT(h.rms_z, 1.15);
 }
 
 }  // namespace

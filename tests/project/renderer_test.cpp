@@ -49,6 +49,19 @@ Fixture make_fixture(int n, float (*f)(const Vec3&), std::uint32_t seed = 1) {
     return fx;
 }
 
+// The renderer's inputs for the fixture in `order` (which, with the shader and frame, must
+// outlive them), over a black background.
+RenderInputs inputs(const Fixture& fx, const SegmentShader& shader, const CameraFrame& frame,
+                    const std::vector<CellId>& order) {
+    RenderInputs in;
+    in.mesh = &fx.mesh;
+    in.scalar = fx.scalar;
+    in.order = order;
+    in.shader = &shader;
+    in.camera = &frame;
+    return in;
+}
+
 Image render(const Fixture& fx, const TransferFunction& tf, const CameraFrame& frame,
              Integrator integrator, const Vec3& background, RenderStats* stats = nullptr,
              std::vector<float>* alpha = nullptr) {
@@ -56,12 +69,7 @@ Image render(const Fixture& fx, const TransferFunction& tf, const CameraFrame& f
     std::vector<CellId> order;
     sorter.sort(fx.mesh, fx.adjacency, SortView::from_camera(frame), SortMethod::kMpvo, order);
     const SegmentShader shader(tf, integrator, longest_edge(fx.mesh));
-    RenderInputs in;
-    in.mesh = &fx.mesh;
-    in.scalar = fx.scalar;
-    in.order = order;
-    in.shader = &shader;
-    in.camera = &frame;
+    RenderInputs in = inputs(fx, shader, frame, order);
     in.background = background;
     return render_projected_tetrahedra(in, stats, alpha);
 }
@@ -330,12 +338,7 @@ TEST(Renderer, OpaqueGeometryCutsEverySegmentAtItsDepth) {
         std::vector<CellId> order;
         sorter.sort(fx.mesh, fx.adjacency, SortView::from_camera(frame), SortMethod::kMpvo, order);
         const SegmentShader shader(tf, Integrator::kExact, longest_edge(fx.mesh));
-        RenderInputs in;
-        in.mesh = &fx.mesh;
-        in.scalar = fx.scalar;
-        in.order = order;
-        in.shader = &shader;
-        in.camera = &frame;
+        RenderInputs in = inputs(fx, shader, frame, order);
         in.opaque_color = &layer.color;
         in.opaque_depth = &layer.depth;
         const Image image = render_projected_tetrahedra(in);
@@ -393,23 +396,57 @@ const Camera kAlphaCameras[] = {
     }(),  // perspective
 };
 
-// The picture, and when `alpha` is given its alpha, over `background` or an opaque layer (its
-// depth always, its colour when `with_color`).
-Image render_alpha(const Fixture& fx, const SegmentShader& shader, const CameraFrame& frame,
-                   const std::vector<CellId>& order, const Vec3& background,
-                   const OpaqueLayer* layer, bool with_color, std::vector<float>* alpha) {
-    RenderInputs in;
-    in.mesh = &fx.mesh;
-    in.scalar = fx.scalar;
-    in.order = order;
-    in.shader = &shader;
-    in.camera = &frame;
-    in.background = background;
-    if (layer) {
-        in.opaque_depth = &layer->depth;
-        if (with_color) in.opaque_color = &layer->color;
+// One view of the alpha tests: an integrator's shader and a camera's frame, the box's visibility
+// order in it, and the opaque layer of a tilted plane through the box (z = 1 + 0.3 x).
+struct AlphaView {
+    const Fixture& fx;
+    std::string name;
+    SegmentShader shader;
+    CameraFrame frame;
+    std::vector<CellId> order;
+    SurfaceMesh plane = testing::tilted_plane(-1, 5, 0.7, 2.5);
+    OpaqueLayer layer = testing::plane_layer(plane, frame);
+
+    AlphaView(const Fixture& f, const TransferFunction& tf, Integrator integrator,
+              const Camera& camera)
+        : fx(f),
+          name(std::string(integrator_name(integrator)) +
+               (camera.parallel ? " orthographic" : " perspective")),
+          shader(tf, integrator, longest_edge(f.mesh)),
+          frame(camera, 64, 64) {
+        VisibilitySorter sorter;
+        sorter.sort(fx.mesh, fx.adjacency, SortView::from_camera(frame), SortMethod::kMpvo, order);
     }
-    return render_projected_tetrahedra(in, nullptr, alpha);
+
+    // The render callable of the alpha checks (tests/project/alpha_check.h): the picture over
+    // `background`, or over the layer (its depth, and its colour too when `color`).
+    Image operator()(const Vec3& background, bool depth, bool color,
+                     std::vector<float>* alpha) const {
+        RenderInputs in = inputs(fx, shader, frame, order);
+        in.background = background;
+        if (depth) {
+            in.opaque_depth = &layer.depth;
+            if (color) in.opaque_color = &layer.color;
+        }
+        return render_projected_tetrahedra(in, nullptr, alpha);
+    }
+};
+
+// Calls `f` with each view of the alpha tests: the ramp box, each integrator, each camera; stops
+// at a fatal failure, as an ASSERT in the loop's body would.
+template <class F>
+void for_each_alpha_view(F&& f) {
+    const Fixture fx = make_fixture(4, ramp_in_x, 5);
+    const TransferFunction tf = ramp_tf();
+    for (Integrator integrator :
+         {Integrator::kPreintegrated, Integrator::kExact, Integrator::kExpTexture}) {
+        for (const Camera& camera : kAlphaCameras) {
+            const AlphaView view(fx, tf, integrator, camera);
+            SCOPED_TRACE(view.name);
+            f(view);
+            if (::testing::Test::HasFatalFailure()) return;
+        }
+    }
 }
 
 // For each integrator and camera: the picture over a non-black background, and over an opaque
@@ -418,123 +455,30 @@ Image render_alpha(const Fixture& fx, const SegmentShader& shader, const CameraF
 // lies in [0, 1], is exactly 0 where the rays miss the box, above 0.99 where the box is opaque,
 // and the opaque layer lowers it.
 TEST(Renderer, AlphaComposesThePictureOverAnyBackgroundFromTheOneOverBlack) {
-    const Fixture fx = make_fixture(4, ramp_in_x, 5);
-    const TransferFunction tf = ramp_tf();
-    SurfaceMesh plane;  // z = 1 + 0.3 x
-    plane.points = {{-1, -1, 0.7}, {5, -1, 2.5}, {5, 5, 2.5}, {-1, 5, 0.7}};
-    plane.triangles = {{0, 1, 2}, {0, 2, 3}};
-    const Vec3 background(0.3, 0.6, 0.9);
     double worst = 0;
-    for (Integrator integrator :
-         {Integrator::kPreintegrated, Integrator::kExact, Integrator::kExpTexture}) {
-        const SegmentShader shader(tf, integrator, longest_edge(fx.mesh));
-        for (const Camera& camera : kAlphaCameras) {
-            const std::string name = std::string(integrator_name(integrator)) +
-                                     (camera.parallel ? " orthographic" : " perspective");
-            SCOPED_TRACE(name);
-            const CameraFrame frame(camera, 64, 64);
-            VisibilitySorter sorter;
-            std::vector<CellId> order;
-            sorter.sort(fx.mesh, fx.adjacency, SortView::from_camera(frame), SortMethod::kMpvo,
-                        order);
-            std::vector<float> alpha, alpha_b;
-            const Image black =
-                render_alpha(fx, shader, frame, order, Vec3(0.0), nullptr, false, &alpha);
-            const Image over_b =
-                render_alpha(fx, shader, frame, order, background, nullptr, false, &alpha_b);
-            ASSERT_EQ(alpha.size(), black.pixels.size());
-            EXPECT_TRUE(testing::bit_identical(alpha, alpha_b));  // alpha is the volume's alone
-            const testing::AlphaCheck c =
-                testing::check_alpha(black, alpha, over_b, Image(64, 64, Vec3f(background)));
-            // The opaque layer: a tilted plane over a grey background.
-            const OpaqueLayer layer =
-                render_opaque({{&plane, Vec3(0.2, 0.9, 0.3)}}, frame, Vec3(0.4, 0.35, 0.3));
-            ASSERT_GT(layer.pixels_covered, 1000u);
-            std::vector<float> alpha_cut;
-            const Image black_cut =
-                render_alpha(fx, shader, frame, order, Vec3(0.0), &layer, false, &alpha_cut);
-            const Image over_layer =
-                render_alpha(fx, shader, frame, order, Vec3(0.0), &layer, true, nullptr);
-            const testing::AlphaCheck cut =
-                testing::check_alpha(black_cut, alpha_cut, over_layer, layer.color);
-            std::printf(
-                "[ alpha %s ] largest difference %.2g over a background, %.2g over opaque "
-                "geometry; alpha in [%g, %g]; %zu pixels 0, %zu partial, %zu above 0.99\n",
-                name.c_str(), c.largest_difference, cut.largest_difference, c.min_alpha,
-                c.max_alpha, c.pixels_transparent, c.pixels_partial, c.pixels_opaque);
-            worst = std::max({worst, c.largest_difference, cut.largest_difference});
-            // Measured at most 3.7e-7 over integrators and cameras (float rounding: colour and
-            // alpha composited in float, one over per fragment); bound 1e-6.
-            EXPECT_LE(c.largest_difference, 1e-6) << "at " << c.worst_x << ", " << c.worst_y;
-            EXPECT_LE(cut.largest_difference, 1e-6) << "at " << cut.worst_x << ", " << cut.worst_y;
-            EXPECT_GE(c.min_alpha, 0.0f);
-            EXPECT_LE(c.max_alpha, 1.0f);
-            EXPECT_GE(cut.min_alpha, 0.0f);
-            EXPECT_LE(cut.max_alpha, 1.0f);
-            // Empty, partly transparent and nearly opaque pixels, all present.
-            EXPECT_GT(c.pixels_partial, 200u);
-            EXPECT_GT(c.pixels_opaque, 100u);
-            std::size_t missed = 0, lowered = 0;
-            for (int j = 0; j < 64; ++j) {
-                for (int i = 0; i < 64; ++i) {
-                    const std::size_t p = static_cast<std::size_t>(j) * 64 + i;
-                    if (testing::misses_box(frame.pixel_ray(i, j), 0.0, 4.0, 1e-3)) {
-                        ++missed;
-                        EXPECT_EQ(alpha[p], 0.0f) << i << ", " << j;
-                        EXPECT_EQ(alpha_cut[p], 0.0f) << i << ", " << j;
-                    }
-                    EXPECT_LE(alpha_cut[p], alpha[p] + 1e-6f) << i << ", " << j;
-                    lowered += alpha_cut[p] < alpha[p] - 0.05f;
-                }
-            }
-            std::printf("[ alpha ] %zu pixels missed, %zu lowered by the opaque layer\n", missed,
-                        lowered);
-            // Measured 1991 to 2094 pixels missed, 530 to 883 lowered (the plane cuts segments).
-            EXPECT_GT(missed, 1500u);
-            EXPECT_GT(lowered, 400u);
-            // The ray through (3.5, 2, 2) crosses the box where it is opaque.
-            const Vec3 q = frame.project(Vec3(3.5, 2.0, 2.0));
-            const std::size_t known = static_cast<std::size_t>(q.y) * 64 + static_cast<int>(q.x);
-            EXPECT_GT(alpha[known], 0.99f);
-        }
-    }
+    for_each_alpha_view([&](const AlphaView& view) {
+        ASSERT_GT(view.layer.pixels_covered, 1000u);
+        testing::AlphaRun r;
+        // Measured at most 3.7e-7 over integrators and cameras (float rounding: colour and
+        // alpha composited in float, one over per fragment); bound 1e-6.
+        ASSERT_NO_FATAL_FAILURE(testing::expect_alpha_composes(
+            "alpha " + view.name, view, Vec3(0.3, 0.6, 0.9), view.layer.color, 1e-6, &r));
+        worst = std::max(worst, r.largest_difference());
+        const testing::AlphaCounts n =
+            testing::count_missed_and_lowered(view.frame, r, 4.0, 1e-3, 1e-6f);
+        // Measured 1991 to 2094 pixels missed, 530 to 883 lowered (the plane cuts segments).
+        EXPECT_GT(n.missed, 1500u);
+        EXPECT_GT(n.lowered, 400u);
+        // The ray through (3.5, 2, 2) crosses the box where it is opaque.
+        EXPECT_GT(r.alpha[testing::pixel_of(view.frame, Vec3(3.5, 2.0, 2.0))], 0.99f);
+    });
     std::printf("[ alpha ] largest difference over all: %.2g\n", worst);
 }
 
 TEST(Renderer, AskingForAlphaChangesNoBitOfThePicture) {
-    const Fixture fx = make_fixture(4, ramp_in_x, 5);
-    const TransferFunction tf = ramp_tf();
-    SurfaceMesh plane;
-    plane.points = {{-1, -1, 0.7}, {5, -1, 2.5}, {5, 5, 2.5}, {-1, 5, 0.7}};
-    plane.triangles = {{0, 1, 2}, {0, 2, 3}};
-    for (Integrator integrator :
-         {Integrator::kPreintegrated, Integrator::kExact, Integrator::kExpTexture}) {
-        const SegmentShader shader(tf, integrator, longest_edge(fx.mesh));
-        for (const Camera& camera : kAlphaCameras) {
-            SCOPED_TRACE(std::string(integrator_name(integrator)) +
-                         (camera.parallel ? " orthographic" : " perspective"));
-            const CameraFrame frame(camera, 64, 64);
-            VisibilitySorter sorter;
-            std::vector<CellId> order;
-            sorter.sort(fx.mesh, fx.adjacency, SortView::from_camera(frame), SortMethod::kMpvo,
-                        order);
-            const OpaqueLayer layer =
-                render_opaque({{&plane, Vec3(0.2, 0.9, 0.3)}}, frame, Vec3(0.4, 0.35, 0.3));
-            const Vec3 background(0.3, 0.6, 0.9);
-            std::vector<float> alpha;
-            for (const OpaqueLayer* l : {static_cast<const OpaqueLayer*>(nullptr), &layer}) {
-                for (bool with_color : {false, true}) {
-                    const Image without =
-                        render_alpha(fx, shader, frame, order, background, l, with_color, nullptr);
-                    const Image with =
-                        render_alpha(fx, shader, frame, order, background, l, with_color, &alpha);
-                    // Not a blank picture (which would be identical trivially).
-                    EXPECT_LT(psnr(without, Image(64, 64, Vec3f(background))), 30.0);
-                    EXPECT_TRUE(testing::bit_identical(without, with));
-                }
-            }
-        }
-    }
+    for_each_alpha_view([](const AlphaView& view) {
+        testing::expect_alpha_changes_no_bit(view, Vec3(0.3, 0.6, 0.9));
+    });
 }
 
 // Preconditions whose violation would read or write out of bounds abort with the check that
@@ -547,12 +491,7 @@ TEST(RendererDeathTest, PreconditionsAreChecked) {
     const SegmentShader shader(tf, Integrator::kExact, longest_edge(fx.mesh));
     std::vector<CellId> order(fx.mesh.num_real_tets());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<CellId>(i);
-    RenderInputs in;
-    in.mesh = &fx.mesh;
-    in.scalar = fx.scalar;
-    in.order = order;
-    in.shader = &shader;
-    in.camera = &frame;
+    const RenderInputs in = inputs(fx, shader, frame, order);
     // A scalar short of one per point.
     const std::vector<float> short_scalar(fx.scalar.begin(), fx.scalar.end() - 1);
     RenderInputs bad = in;
