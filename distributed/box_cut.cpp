@@ -78,15 +78,23 @@ Polyhedron compacted(const std::vector<Corner>& corners, const Polyhedron& faces
     return out;
 }
 
-// Splits a convex polyhedron that has corners strictly on both sides of x[axis] = value into
-// its parts below and above (Sutherland-Hodgman on every face, then the cap on the plane, its
-// corners in angular order around their centroid).
-void split(const Polyhedron& poly, int axis, double value, Polyhedron& below, Polyhedron& above) {
+// Which side of x[axis] = value a coordinate is on: -1 below, 1 above, 0 on the plane (within
+// `snap` of it).
+int side_of(double coordinate, double value, double snap) {
+    const double d = coordinate - value;
+    return d < -snap ? -1 : (d > snap ? 1 : 0);
+}
+
+// Splits a convex polyhedron that has corners on both sides of x[axis] = value (beyond `snap`)
+// into its parts below and above (Sutherland-Hodgman on every face, then the cap on the plane,
+// its corners in angular order around their centroid). Corners within `snap` of the plane
+// belong to both parts as they are.
+void split(const Polyhedron& poly, int axis, double value, double snap, Polyhedron& below,
+           Polyhedron& above) {
     std::vector<Corner> corners = poly.corners;
     std::vector<int> side(corners.size());
     for (std::size_t i = 0; i < corners.size(); ++i) {
-        const double d = corners[i].p[axis] - value;
-        side[i] = d < 0 ? -1 : (d > 0 ? 1 : 0);
+        side[i] = side_of(corners[i].p[axis], value, snap);
     }
     std::vector<std::pair<std::pair<int, int>, int>> made;  // edge -> its crossing corner
     auto crossing_of = [&](int i, int j) {
@@ -183,10 +191,11 @@ void cut_polyhedron(const KdPartition& partition, int node_index, const Polyhedr
         lo = std::min(lo, c.p[node.axis]);
         hi = std::max(hi, c.p[node.axis]);
     }
-    if (hi <= node.split) return cut_polyhedron(partition, node.below, poly, parts, made);
-    if (lo >= node.split) return cut_polyhedron(partition, node.above, poly, parts, made);
+    const double snap = partition.snap_distance();
+    if (hi <= node.split + snap) return cut_polyhedron(partition, node.below, poly, parts, made);
+    if (lo >= node.split - snap) return cut_polyhedron(partition, node.above, poly, parts, made);
     Polyhedron below, above;
-    split(poly, node.axis, node.split, below, above);
+    split(poly, node.axis, node.split, snap, below, above);
     cut_polyhedron(partition, node.below, below, parts, made);
     cut_polyhedron(partition, node.above, above, parts, made);
 }
@@ -214,6 +223,7 @@ PointKey key_of(const Vec3& p) {
 void cut_into_parts(const KdPartition& partition, const TetPiece& tet,
                     std::vector<std::vector<TetPiece>>& parts, CutStats* stats) {
     // Down the tree while the tet lies on one side of each plane.
+    const double snap = partition.snap_distance();
     int node_index = 0;
     while (true) {
         const KdNode& node = partition.nodes()[node_index];
@@ -227,9 +237,9 @@ void cut_into_parts(const KdPartition& partition, const TetPiece& tet,
             lo = std::min(lo, c[node.axis]);
             hi = std::max(hi, c[node.axis]);
         }
-        if (hi <= node.split) {
+        if (hi <= node.split + snap) {
             node_index = node.below;
-        } else if (lo >= node.split) {
+        } else if (lo >= node.split - snap) {
             node_index = node.above;
         } else {
             break;
@@ -273,7 +283,11 @@ Result<TetMesh> mesh_of_pieces(std::span<const TetPiece> pieces, const std::stri
             tets[t][k] = it->second;
         }
     }
-    TR_TRY(TetMesh mesh, TetMesh::create(std::move(points), std::move(tets)));
+    // Slivers stay (a piece of a tet that a plane passes near a corner of is thin): dropping one
+    // would leave its neighbours' faces unmatched. Only tets of no volume at all are dropped.
+    TetMeshCreateOptions options;
+    options.degenerate_tolerance = 0.0;
+    TR_TRY(TetMesh mesh, TetMesh::create(std::move(points), std::move(tets), {}, options));
     TR_TRY_STATUS(mesh.add_point_field(make_float_field(scalar_name, 1, std::move(values))));
     return mesh;
 }

@@ -40,10 +40,11 @@ struct CutStats {
 };
 
 // Appends `tet`'s pieces to `parts[p]` for every part p its box meets: the tet itself when it
-// lies in one box (corners on a plane count as inside both sides), its re-tetrahedralized
-// pieces otherwise (pieces of zero volume, from planes through a corner to rounding, are
-// dropped). Precondition: parts.size() == partition.num_parts(); the corners finite.
-// Cost: O(1) for a tet inside one box; O(pieces) otherwise.
+// lies in one box (corners on a plane, or within KdPartition::snap_distance() of it, count as
+// inside both sides: a piece may reach that far beyond its box), its re-tetrahedralized pieces
+// otherwise (pieces of exactly zero volume are dropped). Precondition: parts.size() ==
+// partition.num_parts(); the corners finite. Cost: O(1) for a tet inside one box; O(pieces)
+// otherwise.
 void cut_into_parts(const KdPartition& partition, const TetPiece& tet,
                     std::vector<std::vector<TetPiece>>& parts, CutStats* stats = nullptr);
 
@@ -51,7 +52,8 @@ void cut_into_parts(const KdPartition& partition, const TetPiece& tet,
 std::vector<TetPiece> tet_pieces(const TetMesh& mesh, std::span<const float> scalar);
 
 // A mesh of `pieces`: points with identical coordinates merged (so conforming pieces share
-// faces), the scalar as a float point field called `scalar_name`. Errors: those of
+// faces), the scalar as a float point field called `scalar_name`; thin pieces are kept (only
+// tets of zero volume are dropped: TetMeshCreateOptions::degenerate_tolerance 0). Errors: those of
 // TetMesh::create (a non-finite corner). Cost: O(pieces) expected (a hash of the points).
 Result<TetMesh> mesh_of_pieces(std::span<const TetPiece> pieces, const std::string& scalar_name);
 

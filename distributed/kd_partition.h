@@ -54,6 +54,11 @@ class KdPartition {
     // The box of part `part` (a leaf's box).
     const Bounds3& box(int part) const { return nodes_[leaf_of_part_[part]].box; }
 
+    // How near a plane a point counts as on it, for cutting (distributed/box_cut.h): 1e-6 of the
+    // domain's diagonal. A layer of points that should lie on one plane but was rounded
+    // differently (float32 coordinates: a few 1e-7 apart) is then not cut into slivers.
+    double snap_distance() const { return 1e-6 * nodes_[0].box.diagonal(); }
+
     // The parts front to back for the view: on every ray, a part's box never lies behind the
     // box of a part that comes later. Cost: O(parts).
     std::vector<int> front_to_back(const CameraFrame& camera) const;

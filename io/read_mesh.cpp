@@ -19,6 +19,63 @@ bool ends_with(const std::string& s, const std::string& suffix) {
            s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+bool is_exodus_extension(const std::string& ext) {
+    return ext == ".exo" || ext == ".e" || ext == ".ex2" || ext == ".g" || ext == ".exii";
+}
+
+bool all_digits(const std::string& s) {
+    return !s.empty() &&
+           std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
+}
+
+// The files of a decomposed Exodus set when `path` names one of them: BASE.N.r, BASE with an
+// Exodus extension, r in [0, N) written with as many digits as the member named (SEACAS's
+// naming: mesh.e.4.0 .. mesh.e.4.3, mesh.e.16.00 .. mesh.e.16.15). Empty for any other name.
+std::vector<fs::path> exodus_set(const fs::path& path) {
+    const std::string name = path.filename().string();
+    const std::size_t last = name.rfind('.');
+    if (last == std::string::npos || last == 0) return {};
+    const std::size_t middle = name.rfind('.', last - 1);
+    if (middle == std::string::npos || middle == 0) return {};
+    const std::string count = name.substr(middle + 1, last - middle - 1);
+    const std::string rank = name.substr(last + 1);
+    const std::string base = name.substr(0, middle);
+    std::string ext = fs::path(base).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (!all_digits(count) || !all_digits(rank) || !is_exodus_extension(ext)) return {};
+    if (count.size() > 6 || rank.size() > 6) return {};
+    const int n = std::stoi(count);
+    if (n < 1 || std::stoi(rank) >= n) return {};
+    std::vector<fs::path> files;
+    for (int r = 0; r < n; ++r) {
+        std::string digits = std::to_string(r);
+        if (digits.size() < rank.size()) digits.insert(0, rank.size() - digits.size(), '0');
+        files.push_back(path.parent_path() / (base + "." + count + "." + digits));
+    }
+    return files;
+}
+
+// Every file of an Exodus set, appended (their shared points merged later, by coordinates).
+UnstructuredMesh read_exodus_set(const fs::path& path, const std::vector<fs::path>& files,
+                                 int time_step, const ProgressRange& progress) {
+    UnstructuredMesh mesh;
+    for (std::size_t k = 0; k < files.size(); ++k) {
+        std::error_code ec;
+        if (!fs::exists(files[k], ec)) {
+            fail(ErrorCode::kNotFound,
+                 "file '" + files[k].filename().string() + "' of the Exodus set is missing",
+                 path.string());
+        }
+        const double lo = static_cast<double>(k) / static_cast<double>(files.size());
+        const double hi = static_cast<double>(k + 1) / static_cast<double>(files.size());
+        check_readable_file(files[k]);
+        append_mesh(mesh, read_exodus(files[k], time_step, progress.sub(lo, hi)));
+    }
+    mesh.format = "Exodus II file set of " + std::to_string(files.size()) + " files";
+    return mesh;
+}
+
 Format format_of(const fs::path& path, const std::string& ext) {
     std::string name = path.filename().string();
     std::transform(name.begin(), name.end(), name.begin(),
@@ -29,9 +86,7 @@ Format format_of(const fs::path& path, const std::string& ext) {
         return Format::kVtkXml;
     }
     if (ext == ".vtk") return Format::kVtkLegacy;
-    if (ext == ".exo" || ext == ".e" || ext == ".ex2" || ext == ".g" || ext == ".exii") {
-        return Format::kExodus;
-    }
+    if (is_exodus_extension(ext) || !exodus_set(path).empty()) return Format::kExodus;
     if (ext == ".pvd") return Format::kPvd;
     if (ext == ".node" || ext == ".ele") return Format::kTetgen;
     if (ext == ".csv") return Format::kCsv;
@@ -55,7 +110,7 @@ void check_single_step(int time_step, const fs::path& path) {
 }
 
 UnstructuredMesh read_any(const fs::path& path, int time_step, const ProgressRange& progress,
-                          bool allow_pvd);
+                          bool allow_pvd, bool whole_exodus_set = true);
 
 UnstructuredMesh read_pvd_series(const fs::path& path, int time_step,
                                  const ProgressRange& progress) {
@@ -99,7 +154,7 @@ UnstructuredMesh read_pvd_series(const fs::path& path, int time_step,
 }
 
 UnstructuredMesh read_any(const fs::path& path, int time_step, const ProgressRange& progress,
-                          bool allow_pvd) {
+                          bool allow_pvd, bool whole_exodus_set) {
     check_readable_file(path);
     const std::string ext = lower_extension(path);
     switch (format_of(path, ext)) {
@@ -110,6 +165,9 @@ UnstructuredMesh read_any(const fs::path& path, int time_step, const ProgressRan
             check_single_step(time_step, path);
             return read_vtk_legacy(path, progress);
         case Format::kExodus:
+            if (const auto set = exodus_set(path); whole_exodus_set && !set.empty()) {
+                return read_exodus_set(path, set, time_step, progress);
+            }
             return read_exodus(path, time_step, progress);
         case Format::kPvd:
             if (!allow_pvd) fail(ErrorCode::kUnsupported, "a .pvd inside a .pvd", path.string());
@@ -144,8 +202,9 @@ std::vector<std::string> supported_mesh_extensions() {
 Result<std::vector<std::filesystem::path>> mesh_pieces(const std::filesystem::path& path) {
     try {
         check_readable_file(path);
-        if (lower_extension(path) != ".pvtu") return std::vector<std::filesystem::path>{path};
-        return pvtu_pieces(path, false);
+        if (lower_extension(path) == ".pvtu") return pvtu_pieces(path, false);
+        if (auto set = exodus_set(path); !set.empty()) return set;
+        return std::vector<std::filesystem::path>{path};
     } catch (const IoError& e) {
         return e.error();
     } catch (const std::exception& e) {
@@ -159,7 +218,8 @@ Result<UnstructuredMesh> read_mesh(const std::filesystem::path& path, const Read
     try {
         const ProgressRange progress{&options.progress, 0.0, 1.0};
         progress.report(0.0);
-        UnstructuredMesh mesh = read_any(path, options.time_step, progress, true);
+        UnstructuredMesh mesh =
+            read_any(path, options.time_step, progress, true, options.whole_exodus_set);
         validate_mesh(mesh, where);
         progress.report(1.0);
         return mesh;

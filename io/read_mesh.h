@@ -17,6 +17,9 @@ struct ReadOptions {
     int time_step = 0;
     // Called with stage "reading" and fractions from 0 to 1 (at least at 0 and 1).
     ProgressFn progress;
+    // A member of a decomposed Exodus set (mesh.e.4.0 .. mesh.e.4.3) reads the whole set; false:
+    // that file alone (how MPI ranks share the set's reading, distributed/).
+    bool whole_exodus_set = true;
 };
 
 // Reads a mesh; the format comes from the (case-insensitive) extension:
@@ -27,7 +30,9 @@ struct ReadOptions {
 //                                   reads them (blank lines, trailing blanks, '\r\n', keyword
 //                                   case); a file VTK would misread is an error
 //   .exo .e .ex2 .g .exii           Exodus II: all element blocks, all nodal and element
-//                                   variables of step `time_step`; side sets as `surfaces`
+//                                   variables of step `time_step`; side sets as `surfaces`;
+//                                   a member of a decomposed set (mesh.e.4.0 .. mesh.e.4.3,
+//                                   SEACAS's naming BASE.N.r) reads all N files
 //   .pvd                            ParaView collection: `time_step` picks the file
 //   .node .ele                      TetGen (0- or 1-based); .node attributes -> attr0, attr1..
 //   .csv                            point cloud: header of names, columns x, y, z, then fields
@@ -49,8 +54,9 @@ Result<UnstructuredMesh> read_mesh(const std::filesystem::path& path,
                                    const ReadOptions& options = {});
 
 // The files that hold `path`'s cells, each readable by read_mesh() alone: a .pvtu's pieces, in
-// the order it lists them, resolved against its folder (not opened: each is checked when it is
-// read, by whoever reads it); any other file is its own one piece. How ranks share the reading
+// the order it lists them, resolved against its folder, or the N files of a decomposed Exodus
+// set BASE.N.r (not opened: each is checked when it is read, by whoever reads it); any other
+// file is its own one piece. How ranks share the reading
 // of a parallel file (distributed/). Errors: those of read_mesh on the .pvtu's own structure.
 // Cost: reading the .pvtu.
 Result<std::vector<std::filesystem::path>> mesh_pieces(const std::filesystem::path& path);

@@ -113,6 +113,7 @@ Result<LoadedMesh> load_tet_mesh(const std::filesystem::path& path, const LoadOp
     ReadOptions read_options;
     read_options.time_step = options.time_step;
     read_options.progress = options.progress;
+    read_options.whole_exodus_set = options.whole_exodus_set;
     TR_TRY(UnstructuredMesh input, read_mesh(path, read_options));
     const double read_ms = ms_since(start);
     TR_TRY(LoadedMesh loaded, load_tet_mesh(std::move(input), path.string(), options));

@@ -18,8 +18,9 @@ struct LoadOptions {
     int time_step = 0;
     double merge_tolerance = 0.0;  // 0: exact merging (TetrahedralizeOptions)
     bool no_merge = false;
-    bool delaunay = false;  // Delaunay of the points even when the file has cells
-    ProgressFn progress;    // stages "reading", "tetrahedralizing"
+    bool delaunay = false;         // Delaunay of the points even when the file has cells
+    bool whole_exodus_set = true;  // io/read_mesh.h ReadOptions::whole_exodus_set
+    ProgressFn progress;           // stages "reading", "tetrahedralizing"
 };
 
 struct LoadedMesh {

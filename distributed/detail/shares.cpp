@@ -46,15 +46,22 @@ Status append_pieces(const TetMesh& tets, const SceneVolume& volume, const std::
 struct Share {
     std::vector<TetPiece> tets;
     std::size_t files = 0;
+    bool dealt = false;  // a file of several pieces, dealt out to the ranks
 };
 
-// Step 1 for one volume on this rank: its run of a .pvtu's pieces, or (rank 0) the whole mesh.
+// Step 1 for one volume on this rank: its run of a .pvtu's pieces (or an Exodus set's files), or
+// (rank 0) the whole mesh.
 Result<Share> read_share(const SceneVolume& volume, const LoadOptions& load, int rank, int size) {
     LoadOptions options = load;
     options.time_step = volume.time_step;
     Share share;
-    if (!volume.tets && !volume.data && is_pvtu(volume.mesh)) {
-        TR_TRY(const std::vector<std::filesystem::path> pieces, mesh_pieces(volume.mesh));
+    std::vector<std::filesystem::path> pieces;
+    if (!volume.tets && !volume.data) {
+        TR_TRY(pieces, mesh_pieces(volume.mesh));
+        share.dealt = pieces.size() > 1 || is_pvtu(volume.mesh);
+    }
+    if (share.dealt) {
+        options.whole_exodus_set = false;  // each file of the set alone
         const std::size_t n = pieces.size();
         const std::size_t first = n * static_cast<std::size_t>(rank) / size;
         const std::size_t last = n * static_cast<std::size_t>(rank + 1) / size;
@@ -189,10 +196,7 @@ Result<Shares> read_and_redistribute(const MpiWorld& world, const Scene& scene,
         return {};
     });
     TR_TRY_STATUS(world.agree(read));
-    stats.reading =
-        !scene.volumes[0].tets && !scene.volumes[0].data && is_pvtu(scene.volumes[0].mesh)
-            ? "pieces"
-            : "rank 0";
+    stats.reading = shares[0].dealt ? "pieces" : "rank 0";
 
     // 2. The partition.
     auto start = Clock::now();
