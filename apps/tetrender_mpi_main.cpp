@@ -181,12 +181,19 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
         code = run(**world, args);
     } catch (const CLI::ParseError& e) {
-        // Help and errors from rank 0 only; every rank exits the same way.
-        std::ostringstream out, err;
-        code = app.exit(e, out, err);
-        if (root) {
-            std::fputs(out.str().c_str(), stdout);
-            std::fputs(err.str().c_str(), stderr);
+        // Help and errors from rank 0 only; every rank exits the same way: 0 for --help and
+        // --version, 2 (kExitUsage) for a bad command line, as tetrender does.
+        const bool asked = dynamic_cast<const CLI::CallForHelp*>(&e) ||
+                           dynamic_cast<const CLI::CallForAllHelp*>(&e) ||
+                           dynamic_cast<const CLI::CallForVersion*>(&e);
+        if (asked) {
+            std::ostringstream out, err;
+            app.exit(e, out, err);
+            if (root) std::fputs(out.str().c_str(), stdout);
+            code = tr::apps::kExitOk;
+        } else {
+            if (root) std::fprintf(stderr, "tetrender-mpi: %s\n", e.what());
+            code = tr::apps::kExitUsage;
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tetrender-mpi: internal error (rank %d): %s\n", (*world)->rank(),

@@ -410,6 +410,9 @@ TEST(DistributedRenderBadInput, RefusesWhatIsNotDistributedAndBadArguments) {
     run = run_mpi(2, shell_quote(scene) + " -o " + shell_quote(dir + "/o.txt"));
     EXPECT_EQ(run.exit_code, 2) << run.err;
     EXPECT_NE(run.err.find(".png"), std::string::npos) << run.err;
+    run = run_mpi(2, shell_quote(scene) + " -o " + shell_quote(dir + "/o.png") + " --bogus");
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_EQ(count_lines_from_us(run.err), 1) << run.err;
     run = run_mpi(2, shell_quote(dir + "/missing.json") + " -o " + shell_quote(dir + "/o.png"));
     EXPECT_EQ(run.exit_code, 1);
     EXPECT_EQ(count_lines_from_us(run.err), 1) << run.err;
