@@ -5,9 +5,9 @@
 
 #include <core/progress.h>
 #include <core/result.h>
-
 #include <pipeline/loaded_mesh.h>
 #include <pipeline/render_stats.h>
+
 #include <string>
 #include <vector>
 

@@ -3,16 +3,16 @@
 #include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
+#include <flowtex/advect_frames.h>
 #include <io/read_surface.h>
 #include <io/write_image.h>
-
-#include <cstdio>
-#include <filesystem>
-#include <flowtex/advect_frames.h>
-#include <memory>
 #include <pipeline/flow_volume_scene.h>
 #include <pipeline/movie.h>
 #include <pipeline/pipeline.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
 #include <unistd.h>
 
 namespace tr::apps {

@@ -6,13 +6,13 @@
 #include <apps/commands.h>
 #include <io/write_image.h>
 #include <io/write_vtu.h>
+#include <pipeline/demo_scene.h>
+#include <pipeline/pipeline.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <pipeline/demo_scene.h>
-#include <pipeline/pipeline.h>
 
 namespace tr::apps {
 namespace {

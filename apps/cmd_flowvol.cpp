@@ -5,6 +5,8 @@
 #include <apps/commands.h>
 #include <io/write_image.h>
 #include <io/write_vtu.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/quick_scene.h>
 #include <project/scene.h>
 
 #include <chrono>
@@ -12,8 +14,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <pipeline/pipeline.h>
-#include <pipeline/quick_scene.h>
 #include <sstream>
 
 namespace tr::apps {

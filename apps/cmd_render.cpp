@@ -5,6 +5,11 @@
 #include <apps/quick_look_args.h>
 #include <core/parallel.h>
 #include <io/write_image.h>
+#include <pipeline/annotations.h>
+#include <pipeline/movie.h>
+#include <pipeline/paraview_camera.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/quick_scene.h>
 #include <project/colormap_preset.h>
 #include <project/scene.h>
 
@@ -14,11 +19,6 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <pipeline/annotations.h>
-#include <pipeline/movie.h>
-#include <pipeline/paraview_camera.h>
-#include <pipeline/pipeline.h>
-#include <pipeline/quick_scene.h>
 #include <unistd.h>
 
 namespace tr::apps {

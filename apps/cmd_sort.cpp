@@ -3,6 +3,8 @@
 #include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/sort_check.h>
 #include <project/scene.h>
 
 #include <nlohmann/json.hpp>
@@ -12,8 +14,6 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <pipeline/pipeline.h>
-#include <pipeline/sort_check.h>
 
 namespace tr::apps {
 namespace {

@@ -4,17 +4,17 @@
 #include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
+#include <flowtex/spot_noise_frames.h>
 #include <io/read_surface.h>
 #include <io/write_image.h>
-
-#include <cstdio>
-#include <filesystem>
-#include <flowtex/spot_noise_frames.h>
-#include <memory>
-#include <optional>
 #include <pipeline/flow_volume_scene.h>
 #include <pipeline/movie.h>
 #include <pipeline/pipeline.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
 
 namespace tr::apps {
 namespace {

@@ -1,9 +1,9 @@
 #include <apps/cli_checks.h>
 #include <apps/quick_look_args.h>
 #include <core/camera.h>
+#include <pipeline/paraview_camera.h>
 #include <project/colormap_preset.h>
 
-#include <pipeline/paraview_camera.h>
 #include <stdexcept>
 
 namespace tr::apps {

@@ -5,12 +5,12 @@
 // pipeline/quick_file_scene.h). Image size, time step and what else a program takes are its own.
 
 #include <core/result.h>
+#include <pipeline/quick_file_scene.h>
+#include <pipeline/quick_scene.h>
 
 #include <CLI/CLI.hpp>
 
 #include <optional>
-#include <pipeline/quick_file_scene.h>
-#include <pipeline/quick_scene.h>
 #include <string>
 #include <vector>
 

@@ -8,6 +8,7 @@
 #include <distributed/distributed_render.h>
 #include <distributed/mpi_world.h>
 #include <io/write_image.h>
+#include <pipeline/movie.h>
 #include <project/scene.h>
 
 #include <CLI/CLI.hpp>
@@ -16,7 +17,6 @@
 #include <exception>
 #include <filesystem>
 #include <optional>
-#include <pipeline/movie.h>
 #include <sstream>
 #include <string>
 

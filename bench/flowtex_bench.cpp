@@ -5,17 +5,17 @@
 // 200k tets, point location by flowvol's adjacency walk).
 #include <bench/bench_meshes.h>
 #include <core/parallel.h>
+#include <flowtex/advection.h>
+#include <flowtex/flow.h>
+#include <flowtex/periodic_texture.h>
+#include <flowtex/sheet.h>
+#include <flowtex/sheet_raster.h>
 #include <mesh/face_adjacency.h>
 #include <mesh/tetrahedralize.h>
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <flowtex/advection.h>
-#include <flowtex/flow.h>
-#include <flowtex/periodic_texture.h>
-#include <flowtex/sheet.h>
-#include <flowtex/sheet_raster.h>
 #include <memory>
 
 namespace tr::bench {

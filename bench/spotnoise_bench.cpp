@@ -5,15 +5,15 @@
 // contour surface the sphere |p - (16, 16, 16)| = 10 with a band of half-width 0.5.
 #include <bench/bench_meshes.h>
 #include <core/parallel.h>
+#include <flowtex/flow.h>
+#include <flowtex/spot_noise.h>
+#include <flowtex/spot_raster.h>
 #include <mesh/face_adjacency.h>
 #include <mesh/tetrahedralize.h>
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <flowtex/flow.h>
-#include <flowtex/spot_noise.h>
-#include <flowtex/spot_raster.h>
 #include <memory>
 
 namespace tr::bench {

@@ -215,7 +215,10 @@ struct DistributedRenderer::Impl {
     std::string key;  // of the volumes `shares` holds
     std::unique_ptr<Shares> shares;
 
-    Impl(const MpiWorld& w, PipelineOptions o) : world(w), options(o), pipeline(std::move(o)) {}
+    Impl(const MpiWorld& w, PipelineOptions o) : world(w), options(o), pipeline(std::move(o)) {
+        // Reading reports its progress (rank 0's: the others are given none by the program).
+        if (!options.load.progress) options.load.progress = options.progress;
+    }
 
     Result<DistributedResult> render(const Scene& scene, const RenderOptions& options);
     // Steps 4 and 5: this rank's picture, composited; the result on rank 0. `fresh`: this

@@ -28,11 +28,11 @@
 #include <core/image.h>
 #include <core/result.h>
 #include <distributed/mpi_world.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/render_stats.h>
 #include <project/scene.h>
 
 #include <memory>
-#include <pipeline/pipeline.h>
-#include <pipeline/render_stats.h>
 #include <string>
 #include <vector>
 

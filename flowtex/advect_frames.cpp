@@ -1,7 +1,8 @@
-#include <chrono>
-#include <cmath>
 #include <flowtex/advect_frames.h>
 #include <flowtex/advected_sheets.h>
+
+#include <chrono>
+#include <cmath>
 
 namespace tr {
 namespace {

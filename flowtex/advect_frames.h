@@ -4,13 +4,13 @@
 
 #include <core/image.h>
 #include <core/result.h>
+#include <flowtex/advection.h>
+#include <flowtex/sheet_raster.h>
 #include <flowvol/velocity_field.h>
 #include <mesh/face_adjacency.h>
 #include <mesh/surface_mesh.h>
 #include <mesh/tet_mesh.h>
 
-#include <flowtex/advection.h>
-#include <flowtex/sheet_raster.h>
 #include <functional>
 #include <optional>
 

@@ -1,6 +1,7 @@
+#include <flowtex/advected_sheets.h>
+
 #include <algorithm>
 #include <cmath>
-#include <flowtex/advected_sheets.h>
 
 namespace tr {
 

@@ -5,15 +5,15 @@
 // scene method `texture-advection` (pipeline/texture_advection_method.h) run.
 
 #include <core/result.h>
+#include <flowtex/advection.h>
+#include <flowtex/flow.h>
+#include <flowtex/periodic_texture.h>
+#include <flowtex/sheet.h>
 #include <flowvol/velocity_field.h>
 #include <mesh/face_adjacency.h>
 #include <mesh/surface_mesh.h>
 #include <mesh/tet_mesh.h>
 
-#include <flowtex/advection.h>
-#include <flowtex/flow.h>
-#include <flowtex/periodic_texture.h>
-#include <flowtex/sheet.h>
 #include <memory>
 #include <optional>
 #include <vector>

@@ -1,9 +1,9 @@
 #include <core/parallel.h>
+#include <flowtex/advection.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <flowtex/advection.h>
 
 namespace tr {
 namespace {

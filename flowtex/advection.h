@@ -27,12 +27,12 @@
 // Velocities are projected onto the sheet's plane (the component along its normal removed).
 
 #include <core/result.h>
-
-#include <array>
-#include <cstdint>
 #include <flowtex/flow.h>
 #include <flowtex/sheet.h>
 #include <flowtex/sheet_sampled_flow.h>
+
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>

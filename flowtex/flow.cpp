@@ -1,5 +1,6 @@
-#include <cmath>
 #include <flowtex/flow.h>
+
+#include <cmath>
 
 namespace tr {
 

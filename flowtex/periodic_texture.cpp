@@ -1,8 +1,8 @@
 #include <core/check.h>
+#include <flowtex/periodic_texture.h>
 
 #include <algorithm>
 #include <cmath>
-#include <flowtex/periodic_texture.h>
 #include <random>
 
 namespace tr {

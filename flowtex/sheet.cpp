@@ -1,8 +1,8 @@
+#include <flowtex/sheet.h>
 #include <flowvol/point_locator.h>
 
 #include <algorithm>
 #include <cmath>
-#include <flowtex/sheet.h>
 #include <sstream>
 
 namespace tr {

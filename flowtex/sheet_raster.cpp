@@ -1,9 +1,9 @@
 #include <core/parallel.h>
+#include <flowtex/sheet_raster.h>
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <flowtex/sheet_raster.h>
 #include <limits>
 #include <optional>
 

@@ -4,9 +4,9 @@
 
 #include <core/camera.h>
 #include <core/image.h>
-
 #include <flowtex/advection.h>
 #include <flowtex/periodic_texture.h>
+
 #include <span>
 
 namespace tr {

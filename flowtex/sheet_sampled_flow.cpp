@@ -1,9 +1,9 @@
 #include <core/parallel.h>
+#include <flowtex/sheet_sampled_flow.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <flowtex/sheet_sampled_flow.h>
 #include <limits>
 
 namespace tr {

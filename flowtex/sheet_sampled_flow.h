@@ -9,9 +9,10 @@
 // rotation), none; on a tet mesh, only in the sheet triangles a tet face crosses, of the order
 // of the sheet's spacing times the jump of the velocity's gradient there.
 
-#include <cstdint>
 #include <flowtex/flow.h>
 #include <flowtex/sheet.h>
+
+#include <cstdint>
 #include <span>
 #include <vector>
 

@@ -1,11 +1,11 @@
 #include <core/check.h>
 #include <core/parallel.h>
+#include <flowtex/detail/spot_random.h>
+#include <flowtex/spot_noise.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <flowtex/detail/spot_random.h>
-#include <flowtex/spot_noise.h>
 #include <limits>
 #include <string>
 

@@ -29,12 +29,12 @@
 // whatever the thread count.
 
 #include <core/result.h>
+#include <flowtex/flow.h>
 #include <flowvol/point_locator.h>
 #include <mesh/field.h>
 #include <mesh/tet_mesh.h>
 
 #include <cstdint>
-#include <flowtex/flow.h>
 #include <optional>
 #include <span>
 #include <vector>

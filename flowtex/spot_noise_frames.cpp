@@ -1,7 +1,8 @@
-#include <chrono>
-#include <cmath>
 #include <flowtex/flow.h>
 #include <flowtex/spot_noise_frames.h>
+
+#include <chrono>
+#include <cmath>
 
 namespace tr {
 namespace {

@@ -5,14 +5,14 @@
 #include <core/camera.h>
 #include <core/image.h>
 #include <core/result.h>
+#include <flowtex/flow.h>
+#include <flowtex/spot_noise.h>
+#include <flowtex/spot_raster.h>
 #include <flowvol/velocity_field.h>
 #include <mesh/face_adjacency.h>
 #include <mesh/tet_mesh.h>
 #include <project/opaque_geometry.h>
 
-#include <flowtex/flow.h>
-#include <flowtex/spot_noise.h>
-#include <flowtex/spot_raster.h>
 #include <functional>
 #include <memory>
 #include <optional>

@@ -1,10 +1,10 @@
 #include <core/parallel.h>
-
-#include <algorithm>
-#include <cmath>
 #include <flowtex/detail/spot_random.h>
 #include <flowtex/detail/spot_rows.h>
 #include <flowtex/spot_raster.h>
+
+#include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace tr {

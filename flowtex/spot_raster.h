@@ -4,11 +4,11 @@
 
 #include <core/camera.h>
 #include <core/image.h>
+#include <flowtex/detail/spot_rows.h>
+#include <flowtex/spot_noise.h>
 
 #include <array>
 #include <cstdint>
-#include <flowtex/detail/spot_rows.h>
-#include <flowtex/spot_noise.h>
 #include <optional>
 #include <vector>
 

@@ -5,11 +5,11 @@
 // Exodus II through netCDF), in /dev/shm when there is one. A mesh read must pass the checks of
 // checks.h (check_mesh).
 
+#include <fuzz/checks.h>
 #include <io/read_mesh.h>
 
 #include <cstddef>
 #include <cstdint>
-#include <fuzz/checks.h>
 #include <string_view>
 
 #ifndef TR_FUZZ_EXTENSION

@@ -3,12 +3,12 @@
 // to a temporary file in /dev/shm. A surface read must pass check_surface (checks.h): triangles,
 // ids in range, finite points.
 
+#include <fuzz/checks.h>
 #include <io/read_surface.h>
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <fuzz/checks.h>
 #include <string_view>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

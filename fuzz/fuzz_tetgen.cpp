@@ -5,13 +5,13 @@
 //   2: read_surface(X.poly) with X.poly, X.node (a .poly without points reads its .node)
 // A mesh read must pass check_mesh, a surface check_surface (checks.h).
 
+#include <fuzz/checks.h>
 #include <io/read_mesh.h>
 #include <io/read_surface.h>
 
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
-#include <fuzz/checks.h>
 #include <string_view>
 #include <system_error>
 

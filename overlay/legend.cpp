@@ -1,8 +1,9 @@
+#include <overlay/legend.h>
+#include <overlay/ticks.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <overlay/legend.h>
-#include <overlay/ticks.h>
 
 namespace tr {
 namespace {

@@ -14,10 +14,10 @@
 // order, to the right centre, the left centre, then the right and the left corners.
 
 #include <core/image.h>
+#include <overlay/text.h>
 #include <project/transfer_function.h>
 
 #include <optional>
-#include <overlay/text.h>
 #include <string>
 #include <vector>
 

@@ -1,7 +1,8 @@
+#include <overlay/scene_marks.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <overlay/scene_marks.h>
 
 namespace tr {
 

@@ -4,7 +4,6 @@
 
 #include <core/camera.h>
 #include <core/image.h>
-
 #include <overlay/text.h>
 
 namespace tr {

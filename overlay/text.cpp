@@ -1,5 +1,6 @@
-#include <ft2build.h>
 #include <overlay/text.h>
+
+#include <ft2build.h>
 #include FT_FREETYPE_H
 
 #include <algorithm>

@@ -1,7 +1,8 @@
+#include <overlay/ticks.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <overlay/ticks.h>
 #include <string>
 #include <string_view>
 

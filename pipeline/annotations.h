@@ -6,10 +6,9 @@
 
 #include <core/image.h>
 #include <core/result.h>
-#include <project/scene.h>
-
 #include <overlay/legend.h>
 #include <pipeline/pipeline.h>
+#include <project/scene.h>
 
 namespace tr {
 

@@ -1,9 +1,8 @@
 #include <core/config.h>
 #include <mesh/tetrahedralize.h>
-#include <project/opaque_geometry.h>
-
 #include <pipeline/demo_scene.h>
 #include <pipeline/quick_scene.h>
+#include <project/opaque_geometry.h>
 
 #if TETRENDER_HAS_TETGEN
 #include <mesh/copyleft/cylinder_demo.h>

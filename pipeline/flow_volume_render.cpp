@@ -1,9 +1,9 @@
+#include <pipeline/flow_volume_render.h>
+#include <pipeline/flow_volume_scene.h>
 #include <project/cpu_renderer.h>
 
 #include <cmath>
 #include <numeric>
-#include <pipeline/flow_volume_render.h>
-#include <pipeline/flow_volume_scene.h>
 
 namespace tr {
 namespace {

@@ -1,6 +1,7 @@
+#include <pipeline/flow_volume_scene.h>
+
 #include <cmath>
 #include <exception>
-#include <pipeline/flow_volume_scene.h>
 #include <utility>
 
 namespace tr {

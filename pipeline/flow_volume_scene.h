@@ -8,13 +8,13 @@
 #include <flowvol/point_locator.h>
 #include <flowvol/velocity_field.h>
 #include <mesh/face_adjacency.h>
+#include <pipeline/loaded_mesh.h>
 #include <project/scene.h>
 #include <project/transfer_function.h>
 
 #include <array>
 #include <memory>
 #include <optional>
-#include <pipeline/loaded_mesh.h>
 #include <string>
 #include <vector>
 

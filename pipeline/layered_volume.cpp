@@ -1,12 +1,12 @@
 #include <core/memory_budget.h>
 #include <core/parallel.h>
+#include <pipeline/layered_volume.h>
+#include <pipeline/scene_volumes.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <pipeline/layered_volume.h>
-#include <pipeline/scene_volumes.h>
 
 namespace tr {
 

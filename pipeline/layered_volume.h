@@ -19,11 +19,11 @@
 #include <core/camera.h>
 #include <core/image.h>
 #include <core/result.h>
+#include <pipeline/pipeline.h>
 #include <project/opaque_geometry.h>
 #include <project/scene.h>
 
 #include <cstdint>
-#include <pipeline/pipeline.h>
 #include <span>
 #include <string>
 #include <vector>

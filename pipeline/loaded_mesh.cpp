@@ -1,5 +1,4 @@
 #include <core/config.h>
-
 #include <pipeline/loaded_mesh.h>
 
 #if TETRENDER_HAS_VTK

@@ -4,10 +4,10 @@
 // method is one new file and one line in method_registry.cpp; no other method changes.
 
 #include <core/result.h>
+#include <pipeline/pipeline.h>
 #include <project/scene.h>
 
 #include <initializer_list>
-#include <pipeline/pipeline.h>
 #include <string>
 #include <string_view>
 #include <vector>

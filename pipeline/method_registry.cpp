@@ -1,11 +1,12 @@
 // The methods of this build, by the names scenes give them (../shared/spec/scene.md, "Method").
 // A new method: its own file with a make_*_method() and one line in methods() below.
-#include <memory>
 #include <pipeline/method.h>
 #include <pipeline/pbvr_methods.h>
 #include <pipeline/projected_tetrahedra.h>
 #include <pipeline/splat_method.h>
 #include <pipeline/texture_advection_method.h>
+
+#include <memory>
 
 namespace tr {
 namespace {

@@ -1,10 +1,11 @@
+#include <pipeline/movie.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fcntl.h>
 #include <fstream>
-#include <pipeline/movie.h>
 #include <spawn.h>
 #include <sstream>
 #include <string>

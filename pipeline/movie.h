@@ -4,10 +4,10 @@
 
 #include <core/camera.h>
 #include <core/result.h>
+#include <pipeline/pipeline.h>
 
 #include <filesystem>
 #include <functional>
-#include <pipeline/pipeline.h>
 #include <vector>
 
 namespace tr {

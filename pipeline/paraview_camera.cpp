@@ -1,9 +1,10 @@
+#include <pipeline/paraview_camera.h>
+
 #include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <map>
 #include <optional>
-#include <pipeline/paraview_camera.h>
 #include <sstream>
 #include <string_view>
 #include <unistd.h>

@@ -1,12 +1,12 @@
 #include <core/parallel.h>
+#include <pipeline/pbvr_methods.h>
+#include <pipeline/scene_volumes.h>
 #include <project/cpu_renderer.h>
 #include <project/opaque_geometry.h>
 #include <project/pbvr_image.h>
 #include <project/pbvr_object.h>
 
 #include <chrono>
-#include <pipeline/pbvr_methods.h>
-#include <pipeline/scene_volumes.h>
 
 namespace tr {
 namespace {

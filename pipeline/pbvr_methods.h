@@ -9,8 +9,9 @@
 //   pbvr-image:  repetitions (64), seed (1), depth ("inverse-cdf", "entry", "middle", "exit",
 //                "random"), stratified (true)
 
-#include <memory>
 #include <pipeline/method.h>
+
+#include <memory>
 
 namespace tr {
 

@@ -1,7 +1,6 @@
 #include <core/config.h>
 #include <core/memory_budget.h>
 #include <mesh/point_data.h>
-
 #include <pipeline/method.h>
 #include <pipeline/pipeline.h>
 

@@ -13,6 +13,10 @@
 #include <core/progress.h>
 #include <core/result.h>
 #include <flowvol/flow_volume.h>
+#include <pipeline/flow_volume_scene.h>
+#include <pipeline/loaded_mesh.h>
+#include <pipeline/render_stats.h>
+#include <pipeline/sort_preparation.h>
 #include <project/opaque_geometry.h>
 #include <project/scene.h>
 #include <project/segment_shader.h>
@@ -21,10 +25,6 @@
 #include <functional>
 #include <map>
 #include <memory>
-#include <pipeline/flow_volume_scene.h>
-#include <pipeline/loaded_mesh.h>
-#include <pipeline/render_stats.h>
-#include <pipeline/sort_preparation.h>
 #include <string>
 #include <vector>
 

@@ -1,12 +1,12 @@
 #include <core/parallel.h>
+#include <pipeline/flow_volume_render.h>
+#include <pipeline/projected_tetrahedra.h>
+#include <pipeline/scene_volumes.h>
 #include <project/cpu_renderer.h>
 #include <project/reference_raycaster.h>
 #include <project/segment_merge.h>
 
 #include <chrono>
-#include <pipeline/flow_volume_render.h>
-#include <pipeline/projected_tetrahedra.h>
-#include <pipeline/scene_volumes.h>
 
 namespace tr {
 namespace {

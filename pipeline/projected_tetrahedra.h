@@ -5,8 +5,9 @@
 // tets (one colour: no sort); or, with RenderOptions::reference, the brute-force reference ray
 // caster.
 
-#include <memory>
 #include <pipeline/method.h>
+
+#include <memory>
 
 namespace tr {
 

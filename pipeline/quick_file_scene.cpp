@@ -1,6 +1,7 @@
+#include <pipeline/quick_file_scene.h>
+
 #include <algorithm>
 #include <memory>
-#include <pipeline/quick_file_scene.h>
 
 namespace tr {
 

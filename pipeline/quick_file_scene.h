@@ -5,11 +5,11 @@
 // make_quick_scene (pipeline/quick_scene.h).
 
 #include <core/result.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/quick_scene.h>
 #include <project/scene.h>
 
 #include <filesystem>
-#include <pipeline/pipeline.h>
-#include <pipeline/quick_scene.h>
 #include <string>
 #include <vector>
 

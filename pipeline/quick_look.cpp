@@ -1,9 +1,9 @@
 #include <mesh/face_adjacency.h>
+#include <pipeline/quick_look.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <pipeline/quick_look.h>
 #include <vector>
 
 namespace tr {

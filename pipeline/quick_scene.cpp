@@ -1,11 +1,11 @@
 #include <mesh/point_data.h>
+#include <pipeline/quick_look.h>
+#include <pipeline/quick_scene.h>
 #include <project/colormap.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <pipeline/quick_look.h>
-#include <pipeline/quick_scene.h>
 #include <span>
 #include <utility>
 

@@ -5,6 +5,7 @@
 
 #include <core/camera.h>
 #include <core/result.h>
+#include <pipeline/loaded_mesh.h>
 #include <project/colormap_preset.h>
 #include <project/scene.h>
 
@@ -12,7 +13,6 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <pipeline/loaded_mesh.h>
 #include <string>
 #include <vector>
 

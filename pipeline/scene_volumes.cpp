@@ -1,7 +1,7 @@
+#include <pipeline/scene_volumes.h>
 #include <project/opaque_geometry.h>
 
 #include <chrono>
-#include <pipeline/scene_volumes.h>
 #include <string>
 
 namespace tr {

@@ -4,13 +4,13 @@
 // for the segment merge, the particle renderers, splatting and the reference ray caster.
 
 #include <core/result.h>
+#include <pipeline/loaded_mesh.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/render_stats.h>
 #include <project/opaque_geometry.h>
 #include <project/volume_scene.h>
 
 #include <memory>
-#include <pipeline/loaded_mesh.h>
-#include <pipeline/pipeline.h>
-#include <pipeline/render_stats.h>
 #include <vector>
 
 namespace tr {

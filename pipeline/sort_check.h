@@ -4,11 +4,11 @@
 // (sort/order_verifier.h).
 
 #include <core/result.h>
+#include <pipeline/pipeline.h>
 #include <sort/order_verifier.h>
 
 #include <cstdint>
 #include <functional>
-#include <pipeline/pipeline.h>
 #include <vector>
 
 namespace tr {

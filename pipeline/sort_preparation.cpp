@@ -1,5 +1,4 @@
 #include <core/config.h>
-
 #include <pipeline/loaded_mesh.h>
 #include <pipeline/sort_preparation.h>
 

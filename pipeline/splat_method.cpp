@@ -1,5 +1,7 @@
 #include <core/parallel.h>
 #include <mesh/field.h>
+#include <pipeline/scene_volumes.h>
+#include <pipeline/splat_method.h>
 #include <project/point_spacing.h>
 #include <project/splat_renderer.h>
 #include <project/vector_splat.h>
@@ -8,8 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <pipeline/scene_volumes.h>
-#include <pipeline/splat_method.h>
 
 namespace tr {
 namespace {

@@ -17,6 +17,8 @@
 #include <core/image.h>
 #include <core/result.h>
 #include <mesh/tet_mesh.h>
+#include <pipeline/method.h>
+#include <pipeline/pipeline.h>
 #include <project/opaque_geometry.h>
 #include <project/splat_renderer.h>
 #include <project/transfer_function.h>
@@ -24,8 +26,6 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <pipeline/method.h>
-#include <pipeline/pipeline.h>
 #include <span>
 #include <string>
 #include <vector>

@@ -1,17 +1,17 @@
 #include <core/parallel.h>
-
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <flowtex/advected_sheets.h>
 #include <flowtex/sheet_raster.h>
 #include <flowtex/spot_noise_frames.h>
 #include <flowtex/spot_raster.h>
-#include <limits>
 #include <pipeline/flow_volume_scene.h>
 #include <pipeline/layered_volume.h>
 #include <pipeline/scene_volumes.h>
 #include <pipeline/texture_advection_method.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
 
 namespace tr {
 namespace {

@@ -16,8 +16,9 @@
 // frame (steps), lifetime, unsteady, start_time, spot_opacity (1.5: W's opacity rate); the
 // method's seed places the spots.
 
-#include <memory>
 #include <pipeline/method.h>
+
+#include <memory>
 
 namespace tr {
 

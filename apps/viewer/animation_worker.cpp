@@ -1,9 +1,9 @@
 #include <apps/viewer/animation_worker.h>
 #include <core/memory_budget.h>
+#include <pipeline/loaded_mesh.h>
 
 #include <algorithm>
 #include <chrono>
-#include <pipeline/loaded_mesh.h>
 
 namespace tr::viewer {
 

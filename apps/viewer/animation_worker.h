@@ -15,6 +15,7 @@
 #include <apps/viewer/request_worker.h>
 #include <core/camera.h>
 #include <core/image.h>
+#include <pipeline/pipeline.h>
 #include <project/scene.h>
 #include <project/transfer_function.h>
 
@@ -24,7 +25,6 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <pipeline/pipeline.h>
 #include <string>
 #include <thread>
 #include <vector>

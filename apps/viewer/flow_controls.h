@@ -5,14 +5,14 @@
 
 #include <apps/viewer/viewer_flow.h>
 #include <flowvol/point_locator.h>
+#include <pipeline/flow_volume_scene.h>
+#include <pipeline/pipeline.h>
 #include <project/gl/gl_renderer.h>
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <pipeline/flow_volume_scene.h>
-#include <pipeline/pipeline.h>
 #include <vector>
 
 namespace tr::viewer {

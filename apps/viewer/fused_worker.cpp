@@ -1,4 +1,5 @@
 #include <apps/viewer/fused_worker.h>
+#include <pipeline/loaded_mesh.h>
 #include <project/pbvr_common.h>
 #include <project/pbvr_image.h>
 #include <project/segment_merge.h>
@@ -7,7 +8,6 @@
 #include <algorithm>
 #include <chrono>
 #include <new>
-#include <pipeline/loaded_mesh.h>
 
 namespace tr::viewer {
 

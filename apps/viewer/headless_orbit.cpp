@@ -2,14 +2,14 @@
 #include <apps/viewer/camera_control.h>
 #include <apps/viewer/headless_orbit.h>
 #include <io/write_image.h>
+#include <pipeline/loaded_mesh.h>
+#include <pipeline/movie.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <optional>
-#include <pipeline/loaded_mesh.h>
-#include <pipeline/movie.h>
 
 namespace tr::viewer {
 

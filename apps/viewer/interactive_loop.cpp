@@ -4,11 +4,12 @@
 #include <io/write_image.h>
 
 #define GLFW_INCLUDE_NONE
+#include <pipeline/loaded_mesh.h>
+
 #include <GLFW/glfw3.h>
 
 #include <chrono>
 #include <cstdio>
-#include <pipeline/loaded_mesh.h>
 #include <string>
 
 namespace tr::viewer {

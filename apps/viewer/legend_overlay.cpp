@@ -1,10 +1,10 @@
 #include <apps/viewer/legend_overlay.h>
+#include <overlay/ticks.h>
 
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
-#include <overlay/ticks.h>
 #include <vector>
 
 namespace tr::viewer {

@@ -1,12 +1,12 @@
 #include <apps/viewer/pbvr_worker.h>
+#include <pipeline/loaded_mesh.h>
+#include <pipeline/splat_method.h>
 #include <project/pbvr_common.h>
 #include <project/segment_shader.h>
 
 #include <algorithm>
 #include <chrono>
 #include <new>
-#include <pipeline/loaded_mesh.h>
-#include <pipeline/splat_method.h>
 
 namespace tr::viewer {
 

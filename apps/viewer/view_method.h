@@ -6,6 +6,8 @@
 // modes' settings, from the command line or a scene file's `method` key.
 
 #include <core/result.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/splat_method.h>
 #include <project/pbvr_image.h>
 #include <project/pbvr_object.h>
 #include <project/scene.h>
@@ -13,8 +15,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
-#include <pipeline/pipeline.h>
-#include <pipeline/splat_method.h>
 #include <string>
 #include <string_view>
 

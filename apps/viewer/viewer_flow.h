@@ -4,6 +4,7 @@
 
 #include <core/result.h>
 #include <flowvol/flow_volume.h>
+#include <pipeline/flow_volume_scene.h>
 #include <project/scene.h>
 
 #include <array>
@@ -12,7 +13,6 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <pipeline/flow_volume_scene.h>
 #include <string>
 #include <thread>
 #include <vector>

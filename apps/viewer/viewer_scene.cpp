@@ -1,12 +1,12 @@
 #include <apps/cli_common.h>
 #include <apps/viewer/viewer_scene.h>
 #include <mesh/point_data.h>
+#include <pipeline/quick_scene.h>
 #include <project/colormap.h>
 #include <project/cpu_renderer.h>
 
 #include <cmath>
 #include <limits>
-#include <pipeline/quick_scene.h>
 
 namespace tr::viewer {
 namespace {

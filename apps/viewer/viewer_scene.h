@@ -9,14 +9,14 @@
 #include <core/result.h>
 #include <mesh/surface_mesh.h>
 #include <mesh/unstructured_mesh.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/quick_file_scene.h>
+#include <pipeline/quick_scene.h>
 #include <project/scene.h>
 #include <project/transfer_function.h>
 
 #include <memory>
 #include <optional>
-#include <pipeline/pipeline.h>
-#include <pipeline/quick_file_scene.h>
-#include <pipeline/quick_scene.h>
 #include <string>
 #include <vector>
 

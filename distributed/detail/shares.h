@@ -7,11 +7,11 @@
 #include <distributed/kd_partition.h>
 #include <distributed/mpi_world.h>
 #include <mesh/tet_mesh.h>
+#include <pipeline/loaded_mesh.h>
 #include <project/scene.h>
 
 #include <cstdint>
 #include <memory>
-#include <pipeline/loaded_mesh.h>
 #include <string>
 #include <vector>
 

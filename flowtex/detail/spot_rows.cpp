@@ -1,9 +1,9 @@
 #include <core/fast_exp.h>
 #include <core/vector_clones.h>
+#include <flowtex/detail/spot_rows.h>
 
 #include <algorithm>
 #include <cmath>
-#include <flowtex/detail/spot_rows.h>
 
 namespace tr::spot_rows {
 namespace {

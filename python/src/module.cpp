@@ -5,20 +5,20 @@
 // the GIL is released while reading, tetrahedralizing, rendering, sorting and verifying.
 #include <core/image.h>
 #include <core/memory_budget.h>
+#include <flowtex/advect_frames.h>
+#include <flowtex/spot_noise_frames.h>
 #include <io/read_mesh.h>
 #include <io/write_image.h>
 #include <mesh/tetrahedralize.h>
-#include <sort/order_verifier.h>
-
-#include <cstring>
-#include <flowtex/advect_frames.h>
-#include <flowtex/spot_noise_frames.h>
-#include <memory>
-#include <mutex>
 #include <pipeline/annotations.h>
 #include <pipeline/flow_volume_scene.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
+#include <sort/order_verifier.h>
+
+#include <cstring>
+#include <memory>
+#include <mutex>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>

@@ -5,6 +5,7 @@
 // (a piece that does not read on one rank ends every rank; more ranks than cells; a rank with
 // nothing in view).
 #include <io/write_vtu.h>
+#include <pipeline/loaded_mesh.h>
 #include <tests/apps/cli_runner.h>
 #include <tests/io/exodus_writer.h>
 #include <tests/support/image_check.h>
@@ -17,7 +18,6 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <pipeline/loaded_mesh.h>
 #include <string>
 #include <vector>
 

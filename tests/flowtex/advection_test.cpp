@@ -3,6 +3,11 @@
 // matches independent backward RK4 traces and its forward points follow particle paths,
 // backward and forward methods agree, re-injection's schedule, slices of a mesh follow its
 // field, advect_frames. Measured values are in the comments next to each bound.
+#include <flowtex/advect_frames.h>
+#include <flowtex/advection.h>
+#include <flowtex/flow.h>
+#include <flowtex/sheet.h>
+#include <flowtex/sheet_raster.h>
 #include <tests/flowtex/fixtures.h>
 #include <tests/support/image_shift.h>
 
@@ -10,11 +15,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <flowtex/advect_frames.h>
-#include <flowtex/advection.h>
-#include <flowtex/flow.h>
-#include <flowtex/sheet.h>
-#include <flowtex/sheet_raster.h>
 
 namespace tr {
 namespace {

@@ -3,12 +3,11 @@
 // texture coordinate, and a tet mesh carrying a linear velocity field.
 
 #include <core/camera.h>
+#include <flowtex/advection.h>
+#include <flowtex/sheet.h>
 #include <mesh/face_adjacency.h>
 #include <mesh/field.h>
 #include <mesh/tet_mesh.h>
-
-#include <flowtex/advection.h>
-#include <flowtex/sheet.h>
 
 namespace tr::testing {
 

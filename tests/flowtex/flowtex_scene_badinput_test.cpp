@@ -2,11 +2,10 @@
 // scene file and the key's JSON path, from check() (kinds, ranges) and from loading (a slice
 // that misses the mesh, an iso outside the scalar's range, an unknown vector array).
 #include <core/memory_budget.h>
+#include <pipeline/pipeline.h>
 #include <tests/flowtex/scene_fixtures.h>
 
 #include <gtest/gtest.h>
-
-#include <pipeline/pipeline.h>
 
 namespace tr {
 namespace {

@@ -1,7 +1,12 @@
 // The scene methods texture-advection and spot-noise (pipeline/texture_advection_method.h):
 // their pictures against the flowtex libraries' own frames (a scene whose volume is clear),
 // depth order against opaque geometry and between sheets, attenuation by the volume in front.
+#include <flowtex/advect_frames.h>
+#include <flowtex/advected_sheets.h>
+#include <flowtex/sheet_raster.h>
+#include <flowtex/spot_noise_frames.h>
 #include <mesh/field.h>
+#include <pipeline/pipeline.h>
 #include <project/opaque_geometry.h>
 #include <tests/flowtex/fixtures.h>
 #include <tests/flowtex/scene_fixtures.h>
@@ -9,11 +14,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <flowtex/advect_frames.h>
-#include <flowtex/advected_sheets.h>
-#include <flowtex/sheet_raster.h>
-#include <flowtex/spot_noise_frames.h>
-#include <pipeline/pipeline.h>
 
 namespace tr {
 namespace {

@@ -1,17 +1,17 @@
 // Grid sheets' fast paths: the raster that finds each pixel's triangle on the grid against the
 // traversal of every triangle, and the velocity sampled at the sheet's points
 // (SheetSampledFlow) against the flow it samples.
+#include <flowtex/advection.h>
+#include <flowtex/flow.h>
+#include <flowtex/sheet.h>
+#include <flowtex/sheet_raster.h>
+#include <flowtex/sheet_sampled_flow.h>
 #include <tests/flowtex/fixtures.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
-#include <flowtex/advection.h>
-#include <flowtex/flow.h>
-#include <flowtex/sheet.h>
-#include <flowtex/sheet_raster.h>
-#include <flowtex/sheet_sampled_flow.h>
 #include <random>
 
 namespace tr {

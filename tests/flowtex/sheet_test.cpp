@@ -1,16 +1,16 @@
 // Sheets and their raster: mip-mapping against each pixel's exact mean, and sheets from planar
 // triangle meshes (2D meshes from files): location, advection on them, bad sheets.
+#include <flowtex/advect_frames.h>
+#include <flowtex/advection.h>
+#include <flowtex/flow.h>
+#include <flowtex/sheet.h>
+#include <flowtex/sheet_raster.h>
 #include <tests/flowtex/fixtures.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
-#include <flowtex/advect_frames.h>
-#include <flowtex/advection.h>
-#include <flowtex/flow.h>
-#include <flowtex/sheet.h>
-#include <flowtex/sheet_raster.h>
 #include <random>
 
 namespace tr {

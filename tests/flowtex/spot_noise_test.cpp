@@ -5,6 +5,10 @@
 // points along its projected velocity (image moments); bad input; zero velocity gives still
 // frames; opaque geometry in front hides the spots. Measured values next to each bound.
 #include <core/parallel.h>
+#include <flowtex/flow.h>
+#include <flowtex/spot_noise.h>
+#include <flowtex/spot_noise_frames.h>
+#include <flowtex/spot_raster.h>
 #include <tests/flowtex/fixtures.h>
 
 #include <gtest/gtest.h>
@@ -12,10 +16,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <flowtex/flow.h>
-#include <flowtex/spot_noise.h>
-#include <flowtex/spot_noise_frames.h>
-#include <flowtex/spot_raster.h>
 
 namespace tr {
 namespace {

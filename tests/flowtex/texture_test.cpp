@@ -1,9 +1,10 @@
 // The periodic noise texture: periodicity, the mip pyramid's averages, filtered lookups.
+#include <flowtex/periodic_texture.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
-#include <flowtex/periodic_texture.h>
 
 namespace tr {
 namespace {

@@ -5,6 +5,8 @@
 // volumes, which shares no code with either.
 #include <core/camera.h>
 #include <mesh/tetrahedralize.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/quick_scene.h>
 #include <project/colormap.h>
 #include <tests/mesh/mixed_grid.h>
 #include <tests/support/image_check.h>
@@ -16,8 +18,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <pipeline/pipeline.h>
-#include <pipeline/quick_scene.h>
 
 namespace tr {
 namespace {

@@ -5,6 +5,7 @@
 // function, matches it; and the pipeline draws a `volumes` scene with it
 // (RenderOptions::reference) and names the volume whose array is missing.
 #include <mesh/tetrahedralize.h>
+#include <pipeline/pipeline.h>
 #include <project/colormap.h>
 #include <project/cpu_renderer.h>
 #include <project/reference_raycaster.h>
@@ -17,7 +18,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <pipeline/pipeline.h>
 
 namespace tr {
 namespace {

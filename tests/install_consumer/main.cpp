@@ -4,12 +4,12 @@
 // renders a flow volume through it.
 #include <core/config.h>
 #include <mesh/tetrahedralize.h>
+#include <pipeline/pipeline.h>
 #include <project/colormap.h>
 
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <pipeline/pipeline.h>
 
 namespace {
 

@@ -1,14 +1,14 @@
 // Annotations on a rendered scene: the legend beside the volume (not over it), the bounding
 // box on the meshes' projected corners, nothing drawn when nothing is asked.
 #include <mesh/tetrahedralize.h>
+#include <pipeline/annotations.h>
+#include <pipeline/quick_scene.h>
 #include <project/colormap.h>
 #include <tests/mesh/mixed_grid.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <pipeline/annotations.h>
-#include <pipeline/quick_scene.h>
 
 namespace tr {
 namespace {

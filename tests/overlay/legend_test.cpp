@@ -1,12 +1,12 @@
 // The colour bar: its colours are the transfer function's, its ticks sit at their values, it
 // stays inside its rectangle and away from the volume.
+#include <overlay/legend.h>
 #include <project/colormap_preset.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
-#include <overlay/legend.h>
 
 namespace tr {
 namespace {

@@ -1,7 +1,7 @@
 // The bounding box and the axes triad: corners land where the camera projects them.
-#include <gtest/gtest.h>
-
 #include <overlay/scene_marks.h>
+
+#include <gtest/gtest.h>
 
 namespace tr {
 namespace {

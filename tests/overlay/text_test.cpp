@@ -1,8 +1,9 @@
 // Text through FreeType: ink inside the box measure() promises, none outside it.
+#include <overlay/text.h>
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <overlay/text.h>
 
 namespace tr {
 namespace {

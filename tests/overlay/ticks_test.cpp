@@ -1,8 +1,9 @@
 // Tick values: nice numbers (1, 2, 5 x 10^k) covering the range.
+#include <overlay/ticks.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <overlay/ticks.h>
 
 namespace tr {
 namespace {

@@ -2,14 +2,14 @@
 // fused demo drawing two meshes that overlap in space, both seen in one picture.
 #include <core/config.h>
 #include <mesh/field.h>
+#include <pipeline/demo_scene.h>
+#include <pipeline/pipeline.h>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <pipeline/demo_scene.h>
-#include <pipeline/pipeline.h>
 
 #if TETRENDER_HAS_TETGEN
 #include <mesh/copyleft/cylinder_demo.h>

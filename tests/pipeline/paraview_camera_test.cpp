@@ -1,8 +1,8 @@
 // ParaView camera files (pipeline/paraview_camera.h): a file laid out as ParaView 5 saves one
 // is read to its values, ours is read back bit for bit, and what is not a camera is an error.
-#include <gtest/gtest.h>
-
 #include <pipeline/paraview_camera.h>
+
+#include <gtest/gtest.h>
 
 namespace tr {
 namespace {

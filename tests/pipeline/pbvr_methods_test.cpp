@@ -3,6 +3,8 @@
 // hiding what lies behind it, and both methods converging on the same picture as projected
 // tetrahedra.
 #include <mesh/tetrahedralize.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/quick_scene.h>
 #include <project/colormap.h>
 #include <project/opaque_geometry.h>
 #include <tests/mesh/mixed_grid.h>
@@ -10,8 +12,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <pipeline/pipeline.h>
-#include <pipeline/quick_scene.h>
 
 namespace tr {
 namespace {

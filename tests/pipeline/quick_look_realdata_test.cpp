@@ -9,6 +9,8 @@
 // the interquartile range of the points' places along the colour map (0: the middle half of the
 // values in one colour; a field dominated by a peak has almost none).
 #include <mesh/point_data.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/quick_scene.h>
 #include <tests/apps/cli_runner.h>
 #include <tests/apps/realdata_scalars.h>
 
@@ -17,8 +19,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <pipeline/pipeline.h>
-#include <pipeline/quick_scene.h>
 
 namespace tr {
 namespace {

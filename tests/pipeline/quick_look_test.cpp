@@ -1,5 +1,8 @@
 // The quick look's automatic choices (pipeline/quick_look.h) against closed forms.
 #include <mesh/tetrahedralize.h>
+#include <pipeline/movie.h>
+#include <pipeline/quick_look.h>
+#include <pipeline/quick_scene.h>
 #include <project/colormap.h>
 #include <tests/mesh/mixed_grid.h>
 
@@ -7,9 +10,6 @@
 
 #include <cmath>
 #include <numbers>
-#include <pipeline/movie.h>
-#include <pipeline/quick_look.h>
-#include <pipeline/quick_scene.h>
 
 namespace tr {
 namespace {

@@ -4,6 +4,8 @@
 // saying what and where, never a picture.
 #include <core/camera.h>
 #include <core/config.h>
+#include <pipeline/pipeline.h>
+#include <pipeline/splat_method.h>
 #include <project/colormap.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
 
@@ -13,8 +15,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <pipeline/pipeline.h>
-#include <pipeline/splat_method.h>
 #include <string>
 #include <unistd.h>
 

@@ -1,10 +1,10 @@
+#include <pipeline/pipeline.h>
 #include <project/scene.h>
 #include <tests/viewer/viewer_fixtures.h>
 
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <pipeline/pipeline.h>
 #include <vector>
 
 namespace tr::testing {

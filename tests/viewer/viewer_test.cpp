@@ -7,6 +7,7 @@
 #include <io/write_image.h>
 #include <io/write_vtu.h>
 #include <mesh/point_data.h>
+#include <pipeline/pipeline.h>
 #include <project/cpu_renderer.h>
 #include <project/opaque_geometry.h>
 #include <project/scene.h>
@@ -24,7 +25,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <pipeline/pipeline.h>
 #include <string>
 #include <vector>
 
