@@ -1,6 +1,7 @@
 // tetrender advect on the shared data's vector fields (office, carotid, disk_out_ref,
 // combustor): both methods write every frame and the texture moves.
 #include <tests/apps/cli_runner.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 
@@ -38,7 +39,8 @@ class AdvectRealData : public ::testing::TestWithParam<Case> {};
 TEST_P(AdvectRealData, BothMethodsWriteMovingFrames) {
     if (!testing::require_shared_data()) GTEST_SKIP() << "no shared data";
     const Case& c = GetParam();
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh =
         testing::shell_quote((std::filesystem::path(testing::shared_data_dir()) / c.file).string());
     for (const char* method : {"backward", "forward"}) {
@@ -80,7 +82,8 @@ class AdvectSceneRealData : public ::testing::TestWithParam<SceneCase> {};
 TEST_P(AdvectSceneRealData, SheetsAndSpotsOverTheVolume) {
     if (!testing::require_shared_data()) GTEST_SKIP() << "no shared data";
     const SceneCase& c = GetParam();
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = (std::filesystem::path(testing::shared_data_dir()) / c.file).string();
     const double x = c.centre[0], y = c.centre[1], z = c.centre[2], d = c.extent;
     const double mid = 0.5 * (c.lo + c.hi);

@@ -1,6 +1,7 @@
 // tetrender advect through the command line on small generated grids: frames written, still
 // frames for zero velocity, and one-line errors for bad input (issue 15).
 #include <tests/apps/cli_runner.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 
@@ -16,9 +17,9 @@
 namespace tr {
 namespace {
 
-using testing::make_temp_dir;
 using testing::run_cli;
 using testing::shell_quote;
+using testing::TempDir;
 
 // A legacy ASCII grid of 4 x 4 x 4 hexahedra over [0, 4]^3 with a point scalar `s` (1, or x
 // with `s_is_x`) and point vectors `v`: zero, or a rotation about the axis x = y = 2.
@@ -72,7 +73,8 @@ int count_files(const std::string& dir) {
 }
 
 TEST(CliAdvect, WritesMovingFramesAndStillFramesForZeroVelocity) {
-    const std::string dir = make_temp_dir();
+    const TempDir temp;
+    const std::string dir = temp.string();
     for (const char* method : {"backward", "forward"}) {
         const std::string frames = dir + "/rot_" + method;
         const auto run =
@@ -96,7 +98,8 @@ TEST(CliAdvect, WritesMovingFramesAndStillFramesForZeroVelocity) {
 }
 
 TEST(CliAdvect, AMovieOfTheFramesAndNoFramesLeft) {
-    const std::string dir = make_temp_dir();
+    const TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = shell_quote(grid_file(dir, true));
     const std::string movie = dir + "/flow.mp4";
     const std::string common =
@@ -124,7 +127,8 @@ TEST(CliAdvect, AMovieOfTheFramesAndNoFramesLeft) {
 
 TEST(CliAdvect, ASheetOfQuadsFromAFile) {
     // A 4 x 4 quad mesh at z = 1.5 across the rotation's axis, as .obj.
-    const std::string dir = make_temp_dir();
+    const TempDir temp;
+    const std::string dir = temp.string();
     std::string obj;
     for (int j = 0; j <= 4; ++j)
         for (int i = 0; i <= 4; ++i)
@@ -159,53 +163,98 @@ TEST(CliAdvect, ASheetOfQuadsFromAFile) {
     EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
 }
 
+// A .pvd of two steps at t = 0 and 1, `first` and `second` (files in `dir`).
+std::string series_file(const std::string& dir, const std::string& name, const std::string& first,
+                        const std::string& second) {
+    const std::string path = dir + "/" + name;
+    std::ofstream(path)
+        << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+           "<Collection>\n<DataSet timestep=\"0\" part=\"0\" file=\""
+        << first << "\"/>\n<DataSet timestep=\"1\" part=\"0\" file=\"" << second
+        << "\"/>\n</Collection>\n</VTKFile>\n";
+    return path;
+}
+
 TEST(CliAdvect, UnsteadySeriesBothMethods) {
-    // A .pvd series: the rotation doubles its speed from t = 0 to t = 1.
-    const std::string dir = make_temp_dir();
+    // Two series from the same first step: the rotation doubling its speed from t = 0 to t = 1,
+    // and the rotation kept (its second step equal to the first). Frame 0 is the same in both;
+    // the last frames differ, so the second step is read and used.
+    const TempDir temp;
+    const std::string dir = temp.string();
     grid_file(dir, true, 1, "s0.vtk");
     grid_file(dir, true, 2, "s1.vtk");
-    std::ofstream(dir + "/flow.pvd")
-        << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
-           "<Collection>\n<DataSet timestep=\"0\" part=\"0\" file=\"s0.vtk\"/>\n"
-           "<DataSet timestep=\"1\" part=\"0\" file=\"s1.vtk\"/>\n</Collection>\n</VTKFile>\n";
+    grid_file(dir, true, 1, "s1_same.vtk");
+    const std::string doubling = series_file(dir, "flow.pvd", "s0.vtk", "s1.vtk");
+    const std::string kept = series_file(dir, "kept.pvd", "s0.vtk", "s1_same.vtk");
     for (const char* method : {"backward", "forward"}) {
-        const std::string frames = dir + "/" + method;
-        const auto run = run_cli("advect " + shell_quote(dir + "/flow.pvd") +
-                                 " --vectors v --unsteady --slice 2,2,2,0,0,1 --steps 4 --size "
-                                 "32x32 --resolution 16 --method " +
-                                 method + " --frames " + shell_quote(frames));
-        ASSERT_EQ(run.exit_code, 0) << run.err;
-        // The default dt spans the series: (1 - 0) / 4.
-        EXPECT_NE(run.out.find("dt 0.25"), std::string::npos) << run.out;
-        EXPECT_EQ(count_files(frames), 5);
+        SCOPED_TRACE(method);
+        auto advect = [&](const std::string& series, const std::string& frames) {
+            const auto run = run_cli("advect " + shell_quote(series) +
+                                     " --vectors v --unsteady --slice 2,2,2,0,0,1 --steps 4 --size "
+                                     "32x32 --resolution 16 --method " +
+                                     method + " --frames " + shell_quote(frames));
+            EXPECT_EQ(run.exit_code, 0) << run.err;
+            // The default dt spans the series: (1 - 0) / 4.
+            EXPECT_NE(run.out.find("dt 0.25"), std::string::npos) << run.out;
+            EXPECT_EQ(count_files(frames), 5);
+        };
+        const std::string frames = dir + "/" + method, same = dir + "/same_" + method;
+        advect(doubling, frames);
+        advect(kept, same);
         EXPECT_TRUE(bytes(frames + "/frame_0000.png") != bytes(frames + "/frame_0004.png"));
+        EXPECT_TRUE(bytes(frames + "/frame_0000.png") == bytes(same + "/frame_0000.png"));
+        EXPECT_TRUE(bytes(frames + "/frame_0004.png") != bytes(same + "/frame_0004.png"))
+            << "the series' second step made no difference";
     }
 }
 
 TEST(CliSpotNoise, UnsteadySeries) {
-    // The rotation doubling its speed from t = 0 to t = 1; spots around the plane x = 2.
-    const std::string dir = make_temp_dir();
+    // The rotation doubling its speed from t = 0 to t = 1, and the rotation kept (the second
+    // step equal to the first); spots around the plane x = 2.
+    const TempDir temp;
+    const std::string dir = temp.string();
     grid_file(dir, true, 1, "s0.vtk", true);
     grid_file(dir, true, 2, "s1.vtk", true);
-    std::ofstream(dir + "/flow.pvd")
-        << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
-           "<Collection>\n<DataSet timestep=\"0\" part=\"0\" file=\"s0.vtk\"/>\n"
-           "<DataSet timestep=\"1\" part=\"0\" file=\"s1.vtk\"/>\n</Collection>\n</VTKFile>\n";
-    const std::string spots = "spotnoise " + shell_quote(dir + "/flow.pvd") +
-                              " --scalar s --iso 2 --vectors v --steps 4 --count 400 --size "
-                              "32x32 --frames ";
-    auto run = run_cli(spots + shell_quote(dir + "/unsteady") + " --unsteady");
-    ASSERT_EQ(run.exit_code, 0) << run.err;
+    grid_file(dir, true, 1, "s1_same.vtk", true);
+    const std::string doubling = series_file(dir, "flow.pvd", "s0.vtk", "s1.vtk");
+    const std::string kept = series_file(dir, "kept.pvd", "s0.vtk", "s1_same.vtk");
+    auto spots = [&](const std::string& series, const std::string& frames,
+                     const std::string& more) {
+        const auto run = run_cli("spotnoise " + shell_quote(series) +
+                                 " --scalar s --iso 2 --vectors v --steps 4 --count 400 --size "
+                                 "32x32 --unsteady --frames " +
+                                 shell_quote(dir + "/" + frames) + more);
+        EXPECT_EQ(run.exit_code, 0) << run.err;
+        EXPECT_EQ(count_files(dir + "/" + frames), 5) << frames;
+        return run.out;
+    };
+    auto frame = [&](const std::string& frames, int k) {
+        return bytes(dir + "/" + frames + "/frame_000" + std::to_string(k) + ".png");
+    };
     // The default dt spans the series: (1 - 0) / 4.
-    EXPECT_NE(run.out.find("dt 0.25"), std::string::npos) << run.out;
-    EXPECT_EQ(count_files(dir + "/unsteady"), 5);
-    EXPECT_NE(bytes(dir + "/unsteady/frame_0000.png"), bytes(dir + "/unsteady/frame_0004.png"));
-    // Starting later: another run of frames.
-    run = run_cli(spots + shell_quote(dir + "/later") + " --unsteady --start-time 0.5 --dt 0.1");
-    ASSERT_EQ(run.exit_code, 0) << run.err;
-    EXPECT_NE(bytes(dir + "/later/frame_0004.png"), bytes(dir + "/unsteady/frame_0004.png"));
+    std::string out = spots(doubling, "unsteady", "");
+    EXPECT_NE(out.find("dt 0.25"), std::string::npos) << out;
+    EXPECT_NE(frame("unsteady", 0), frame("unsteady", 4));
+    // --start-time alone: the default dt spans what is left, (1 - 0.5) / 4, and the frames
+    // differ.
+    out = spots(doubling, "later", " --start-time 0.5");
+    EXPECT_NE(out.find("dt 0.125"), std::string::npos) << out;
+    EXPECT_NE(frame("later", 4), frame("unsteady", 4));
+    // --dt alone: that dt, and the frames differ.
+    out = spots(doubling, "short", " --dt 0.1");
+    EXPECT_NE(out.find("dt 0.1\n"), std::string::npos) << out;
+    EXPECT_NE(frame("short", 4), frame("unsteady", 4));
+    // --start-time with dt fixed: from 0.5 the flow is faster than from 0, so the frames differ;
+    // over the series whose steps are equal the start time changes nothing. The start time
+    // picks the velocity, and the later time step is used.
+    spots(doubling, "short_later", " --dt 0.1 --start-time 0.5");
+    EXPECT_NE(frame("short_later", 4), frame("short", 4));
+    spots(kept, "kept", " --dt 0.1");
+    spots(kept, "kept_later", " --dt 0.1 --start-time 0.5");
+    EXPECT_EQ(frame("kept_later", 4), frame("kept", 4));
+    EXPECT_NE(frame("kept", 4), frame("short", 4)) << "the second step made no difference";
     // One step is no series.
-    run =
+    const auto run =
         run_cli("spotnoise " + shell_quote(grid_file(dir, true, 1, "one.vtk", true)) +
                 " --scalar s --iso 2 --vectors v --unsteady --frames " + shell_quote(dir + "/one"));
     EXPECT_EQ(run.exit_code, 1);
@@ -215,7 +264,8 @@ TEST(CliSpotNoise, UnsteadySeries) {
 }
 
 TEST(CliAdvectBadInput, OneLineErrorsAndNoFrames) {
-    const std::string dir = make_temp_dir();
+    const TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = shell_quote(grid_file(dir, true));
     struct Case {
         std::string args;
@@ -267,7 +317,8 @@ std::string advection_scene(const std::string& dir, const std::string& method) {
 // `tetrender render SCENE --frames DIR` writes frames 0 .. steps of an animated method; a plain
 // render is its last frame, byte for byte.
 TEST(CliAdvectScene, RenderWritesTheMethodsFrames) {
-    const std::string dir = make_temp_dir();
+    const TempDir temp;
+    const std::string dir = temp.string();
     for (const char* name : {"texture-advection", "spot-noise"}) {
         SCOPED_TRACE(name);
         const std::string keys =
@@ -294,7 +345,8 @@ TEST(CliAdvectScene, RenderWritesTheMethodsFrames) {
 }
 
 TEST(CliAdvectSceneBadInput, OneLineErrorsNamingTheSceneAndTheKey) {
-    const std::string dir = make_temp_dir();
+    const TempDir temp;
+    const std::string dir = temp.string();
     const std::vector<std::pair<std::string, std::string>> cases = {
         {R"(texture-advection", "vectors": "v", "sheet_opacity": "half")",
          "$.method.sheet_opacity: expected a number in (0, 1]"},

@@ -2,6 +2,7 @@
 // volume must be a one-line error and exit 1 from every command that loads them, not a black
 // picture with exit 0 (what `render` did before), and leave no output file.
 #include <tests/apps/cli_runner.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 
@@ -66,7 +67,8 @@ TEST(CliBadInput, MeshWithNoTetrahedronLeftIsAnError) {
          legacy_grid({{0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}},
                      {{0, 1, 2, 3}}, 10)},
     };
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     for (const auto& c : cases) {
         SCOPED_TRACE(c.name);
         const std::string in = dir + "/" + c.name;
@@ -86,7 +88,6 @@ TEST(CliBadInput, MeshWithNoTetrahedronLeftIsAnError) {
             EXPECT_FALSE(std::filesystem::exists(vtu));
         }
     }
-    std::filesystem::remove_all(dir);
 }
 
 // A mistyped subcommand said "A subcommand is required" (issue 13): now one line naming the word
@@ -125,7 +126,8 @@ TEST(CliBadInput, UnknownSubcommandSuggestsTheNearest) {
 // polygon's normal" although one was given. Each is now one line saying what is wrong, exit 2,
 // checked before the mesh is read (the mesh here does not exist) and with no output written.
 TEST(CliBadInput, FlowvolNumbersSayWhatIsWrong) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string png = dir + "/out.png";
     const std::string base = "flowvol " + shell_quote(dir + "/missing.vtu") +
                              " --vectors V --seed-center 0,0,0 --seed-size 1,1 -o " +
@@ -154,7 +156,6 @@ TEST(CliBadInput, FlowvolNumbersSayWhatIsWrong) {
     const testing::CliRun good = run_cli(base + "--seed-normal 0,0,1 --dt 0.01");
     EXPECT_EQ(good.exit_code, 1) << good.err;
     EXPECT_NE(good.err.find("missing.vtu"), std::string::npos) << good.err;
-    std::filesystem::remove_all(dir);
 }
 
 // Numeric options of every command (issue 13): CLI11's PositiveNumber / NonNegativeNumber printed
@@ -163,7 +164,8 @@ TEST(CliBadInput, FlowvolNumbersSayWhatIsWrong) {
 // one short line saying what the value must be, exit 2, before any file is read (the mesh and
 // pictures here do not exist), no output written.
 TEST(CliBadInput, NumericOptionsSayWhatIsWrongInOneLine) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = shell_quote(dir + "/missing.vtu");
     const std::string frames = shell_quote(dir + "/frames");
     const std::string advect = "advect " + mesh + " --vectors V ";
@@ -201,7 +203,6 @@ TEST(CliBadInput, NumericOptionsSayWhatIsWrongInOneLine) {
         EXPECT_LT(run.err.size(), 120u);
     }
     EXPECT_FALSE(std::filesystem::exists(dir + "/frames"));
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <tests/apps/cli_runner.h>
 #include <tests/apps/realdata_scalars.h>
 #include <tests/support/image_check.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -24,7 +25,8 @@ class PbvrRealData : public ::testing::TestWithParam<Case> {};
 TEST_P(PbvrRealData, BothMethodsConvergeOnTheProjectedTetrahedraPicture) {
     if (!testing::require_shared_data()) GTEST_SKIP() << "no shared data";
     const Case& c = GetParam();
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string scene = dir + "/scene.json";
     const std::string mesh =
         testing::shell_quote((std::filesystem::path(testing::shared_data_dir()) / c.file).string());
@@ -74,7 +76,6 @@ TEST_P(PbvrRealData, BothMethodsConvergeOnTheProjectedTetrahedraPicture) {
                   0.0)
             << method;
     }
-    std::filesystem::remove_all(dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, PbvrRealData, ::testing::ValuesIn(testing::kRealDataScalars),

@@ -3,6 +3,7 @@
 // volumes not built yet are one-line errors; output paths are checked before any work.
 #include <tests/apps/cli_runner.h>
 #include <tests/support/image_check.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -81,7 +82,8 @@ void expect_one_line_error(const testing::CliRun& run, int code, const std::stri
 }
 
 TEST(CliPipeline, OneVolumeInTheListRendersAsTheTopLevelKeys) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const nlohmann::json top = block_scene(dir);
     nlohmann::json listed = top;
     nlohmann::json volume;
@@ -99,11 +101,11 @@ TEST(CliPipeline, OneVolumeInTheListRendersAsTheTopLevelKeys) {
     ASSERT_EQ(ia.pixels.size(), 64u * 48u);
     EXPECT_EQ(compare_images(ia, ib, Vec3f(0.0f)).max_difference, 0.0);  // identical
     EXPECT_GT(compare_images(ia, Image(64, 48), Vec3f(0.0f)).foreground_pixels, 800u);
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliPipeline, MethodOptionsOverrideTheScene) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string scene = write_json(dir + "/s.json", block_scene(dir));
     const std::string out = dir + "/o.png";
     // A method's key it does not take: one line, exit 1, no picture.
@@ -139,11 +141,11 @@ TEST(CliPipeline, MethodOptionsOverrideTheScene) {
     const auto j = nlohmann::json::parse(stats.out);
     EXPECT_TRUE(j.at("sort_exact").get<bool>());
     EXPECT_EQ(j.at("cells").get<int>(), 12 * 6);  // each hexahedron split into 6 tets
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliPipeline, SeveralVolumesAreMerged) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     nlohmann::json scene = block_scene(dir);
     nlohmann::json volume;
     for (const char* key : {"mesh", "scalar", "component", "transfer_function"}) {
@@ -164,22 +166,22 @@ TEST(CliPipeline, SeveralVolumesAreMerged) {
     run = run_cli("render " + shell_quote(write_json(dir + "/bad.json", scene)) + " -o " + out);
     expect_one_line_error(run, 1, "volume 1: ");
     EXPECT_NE(run.err.find("nope"), std::string::npos) << run.err;
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliPipelineBadInput, OutputPathsAreCheckedBeforeTheWork) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = write_block(dir);
     auto run = run_cli("render " + mesh + " --scalar t -o " + dir + "/no/such/folder/x.png");
     expect_one_line_error(run, 2, "does not exist");
     run = run_cli("render " + mesh + " --scalar t -o " + dir + "/x.jpg");
     expect_one_line_error(run, 2, "must end in .png, .pfm");
     EXPECT_FALSE(std::filesystem::exists(dir + "/x.jpg"));
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliPipelineBadInput, WhatWouldExceedTheMemoryBudgetIsRefusedUpFront) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = shell_quote(write_block(dir));
     const std::string out = shell_quote(dir + "/x.png");
     // The block's 12 hexahedra split into 72 tets (110 bytes each, estimated): over 4 kB.
@@ -204,7 +206,6 @@ TEST(CliPipelineBadInput, WhatWouldExceedTheMemoryBudgetIsRefusedUpFront) {
     EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
     expect_one_line_error(run_cli("info " + mesh + " --max-memory 12Q"), 2,
                           "--max-memory: a memory size is a number");
-    std::filesystem::remove_all(dir);
 }
 
 // Quick mode's pictures: the mesh `block` at 160 x 120 with `options`, as floats.
@@ -218,7 +219,8 @@ Image quick_picture(const std::string& dir, const std::string& mesh, const std::
 }
 
 TEST(CliQuickLook, TheLegendOnlyChangesASideOfThePicture) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = write_block(dir);
     const Image with = quick_picture(dir, mesh, "", "with");
     const Image without = quick_picture(dir, mesh, "--legend off", "without");
@@ -233,11 +235,11 @@ TEST(CliQuickLook, TheLegendOnlyChangesASideOfThePicture) {
         }
     }
     EXPECT_GT(changed, 1000u);  // measured 1374 pixels of bar, ticks and text
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliQuickLook, AWrittenColormapAndAGivenCameraGiveThePictureBack) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = write_block(dir);
     const std::string scene = dir + "/quick.json";
     const std::string colormap = dir + "/map.json";
@@ -262,7 +264,6 @@ TEST(CliQuickLook, AWrittenColormapAndAGivenCameraGiveThePictureBack) {
                       "again");
     // Measured: foreground PSNR 131.3 dB, largest difference below 1e-5 (the camera's rounding).
     EXPECT_TRUE(testing::images_match(again, first, Vec3f(0.0f), {120.0, 1e-5}, "colormap_camera"));
-    std::filesystem::remove_all(dir);
 }
 
 std::string slurp(const std::string& path) {
@@ -271,7 +272,8 @@ std::string slurp(const std::string& path) {
 }
 
 TEST(CliQuickLook, AParaviewCameraFileGivesTheViewBack) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = shell_quote(write_block(dir));
     const std::string camera = shell_quote(dir + "/view.pvcc");
     auto run = run_cli("render " + mesh + " --scalar t --size 64x48 --azimuth 30 -o " +
@@ -286,21 +288,21 @@ TEST(CliQuickLook, AParaviewCameraFileGivesTheViewBack) {
                 shell_quote(dir + "/c.png")),
         1, "not a ParaView camera file");
     EXPECT_FALSE(std::filesystem::exists(dir + "/c.png"));
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliQuickLook, AzimuthTurnsTheViewAboutTheUpAxis) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = write_block(dir);
     const Image turned = quick_picture(dir, mesh, "--legend off --view +x --azimuth 90", "turned");
     const Image along_y = quick_picture(dir, mesh, "--legend off --view +y", "along_y");
     // Measured: 187 dB, equal to rounding (cos 90 degrees is 6e-17, not 0).
     EXPECT_TRUE(testing::images_match(turned, along_y, Vec3f(0.0f), {150.0, 1e-6}, "azimuth"));
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliQuickLook, WithoutScalarTheFirstArrayOrWhereTheMeshIs) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string block = write_block(dir);
     auto run = run_cli("render " + shell_quote(block) + " --size 64x48 -o " +
                        shell_quote(dir + "/default.png"));
@@ -334,11 +336,11 @@ TEST(CliQuickLook, WithoutScalarTheFirstArrayOrWhereTheMeshIs) {
         EXPECT_NEAR(green_share(p), green_share(brightest), 0.02);
     }
     EXPECT_GT(lit, 500u);
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliQuickLook, ANameThatIsPointAndCellData) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     // The block with a cell array `t` too (each cell its index).
     std::string text = slurp(write_block(dir)) +
                        "CELL_DATA 12\nSCALARS t double 1\n"
@@ -365,11 +367,11 @@ TEST(CliQuickLook, ANameThatIsPointAndCellData) {
     expect_one_line_error(run_cli("render " + shell_quote(write_block(dir)) +
                                   " --scalar t --cell-data -o " + shell_quote(dir + "/x.png")),
                           1, "no cell array 't'");
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliQuickLook, LogScaleAndTheSceneItWrites) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = shell_quote(write_block(dir));
     const auto at = [&](const std::string& name) { return shell_quote(dir + "/" + name); };
     const std::string quick = "render " + mesh + " --scalar t --size 64x48 --legend off ";
@@ -399,11 +401,11 @@ TEST(CliQuickLook, LogScaleAndTheSceneItWrites) {
     expect_one_line_error(run_cli(quick + "--log --range 0,1 -o " + at("x.png")), 1,
                           "--log needs a positive range");
     EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliQuickLook, AnEmptyPictureIsSaid) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = shell_quote(write_block(dir));
     const std::string out = " -o " + shell_quote(dir + "/x.png");
     auto run = run_cli("render " + mesh + " --scalar t --opacity-curve 0:0,1:0" + out);
@@ -412,11 +414,11 @@ TEST(CliQuickLook, AnEmptyPictureIsSaid) {
     run = run_cli("render " + mesh + " --scalar t" + out);
     EXPECT_EQ(run.exit_code, 0) << run.err;
     EXPECT_EQ(run.err.find("empty"), std::string::npos) << run.err;
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliQuickLook, BadOptionsAreOneLineErrors) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = shell_quote(write_block(dir));
     const std::string out = " -o " + shell_quote(dir + "/x.png");
     expect_one_line_error(run_cli("render " + mesh + " --scalar t --range 2,1" + out), 1,
@@ -448,11 +450,11 @@ TEST(CliQuickLook, BadOptionsAreOneLineErrors) {
     expect_one_line_error(run_cli("render " + mesh + " --scalar t --legend maybe" + out), 2,
                           "--legend takes on or off");
     EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliAnimation, AnOrbitsFramesStartWithThePictureAndTurn) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = shell_quote(write_block(dir));
     const std::string frames = dir + "/orbit";
     auto run =
@@ -469,11 +471,11 @@ TEST(CliAnimation, AnOrbitsFramesStartWithThePictureAndTurn) {
     EXPECT_EQ(slurp(frames + "/frame_0000.png"), slurp(dir + "/one.png"));
     EXPECT_EQ(slurp(dir + "/first.png"), slurp(dir + "/one.png"));
     EXPECT_NE(slurp(frames + "/frame_0001.png"), slurp(frames + "/frame_0000.png"));
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliAnimation, EveryTimeStepOfASeriesIsAFrame) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string block = write_block(dir);
     // Step 1 has the values in reverse order: another picture.
     std::string text = slurp(block);
@@ -499,11 +501,11 @@ TEST(CliAnimation, EveryTimeStepOfASeriesIsAFrame) {
     EXPECT_FALSE(std::filesystem::exists(frames + "/frame_0003.png"));
     EXPECT_EQ(slurp(frames + "/frame_0000.png"), slurp(frames + "/frame_0002.png"));
     EXPECT_NE(slurp(frames + "/frame_0000.png"), slurp(frames + "/frame_0001.png"));
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliAnimation, AMovieThroughFfmpegOrAClearMessage) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = shell_quote(write_block(dir));
     const std::string orbit = " --scalar t --size 64x48 --orbit 90 --frame-count 6 --movie ";
     // Without ffmpeg on the PATH: one line saying what to install, nothing written.
@@ -529,7 +531,6 @@ TEST(CliAnimation, AMovieThroughFfmpegOrAClearMessage) {
     for (const auto& entry : std::filesystem::directory_iterator(dir)) {
         EXPECT_EQ(entry.path().filename().string().rfind(".tmp", 0), std::string::npos);
     }
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // `tetrender info` on every dataset in ../shared/data, checked against the facts its SOURCE.md
 // states (measured with VTK 9.1 by someone else): cell counts, distinct points, volume.
 #include <tests/apps/cli_runner.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -117,7 +118,8 @@ TEST(InfoOnRealDataRepairs, CountsWhatTheFilesHide) {
 // it grows every layer, with the front refined where it stretches, and renders.
 TEST(FlowvolOnRealData, DiskOutRefVelocity) {
     if (!require_data()) GTEST_SKIP() << "no shared data at " << data_dir();
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const auto run = testing::run_cli(
         "flowvol " + testing::shell_quote((data_dir() / "disk_out_ref/disk_out_ref.ex2").string()) +
         " --vectors V --seed-center 2,0,8 --seed-size 2,2 --seed-res 16 --steps 30 --dt 0.02"
@@ -131,7 +133,6 @@ TEST(FlowvolOnRealData, DiskOutRefVelocity) {
     const auto j = nlohmann::json::parse(info.out);
     EXPECT_GT(j["tetrahedralization"]["volume"].get<double>(), 0.0);
     EXPECT_TRUE(std::filesystem::exists(dir + "/fv.png"));
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

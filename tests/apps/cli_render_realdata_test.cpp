@@ -6,6 +6,7 @@
 #include <core/image.h>
 #include <tests/apps/cli_runner.h>
 #include <tests/support/image_check.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 
@@ -148,7 +149,8 @@ class RenderRealData : public ::testing::TestWithParam<Case> {};
 TEST_P(RenderRealData, IntegratorsAgainstTheReference) {
     if (!require_data()) GTEST_SKIP() << "no shared data at " << data_dir();
     const Case& c = GetParam();
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string scene = dir + "/scene.json";
     const std::string mesh = testing::shell_quote((data_dir() / c.file).string());
     const auto run = testing::run_cli(
@@ -160,7 +162,6 @@ TEST_P(RenderRealData, IntegratorsAgainstTheReference) {
     std::string name = c.file;
     name = name.substr(0, name.find('/'));
     check_scene(scene, dir, name, c.bounds);
-    std::filesystem::remove_all(dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, RenderRealData, ::testing::ValuesIn(kCases),
@@ -174,7 +175,8 @@ INSTANTIATE_TEST_SUITE_P(SharedData, RenderRealData, ::testing::ValuesIn(kCases)
 // up to 4 across one. The old (front, back, length) table drew tet-edge patterns there.
 TEST(RenderRealDataThick, OfficeVentilation) {
     if (!require_data()) GTEST_SKIP() << "no shared data at " << data_dir();
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string scene = dir + "/office_thick.json";
     {
         // The quick scene's camera; viridis over the array's range.
@@ -199,7 +201,6 @@ TEST(RenderRealDataThick, OfficeVentilation) {
                  {90.4, 0.0014},    // default: measured 93.4 dB, 0.00037
                  {58.4, 0.0171},    // exp-texture: measured 61.4 dB, 0.01506 (4 levels)
                  {90.1, 0.0014}});  // default vs exact: measured 93.1 dB, 0.00037
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

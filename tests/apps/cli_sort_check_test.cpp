@@ -4,6 +4,7 @@
 // ring untwisted has no cycle and passes.
 #include <core/config.h>
 #include <tests/apps/cli_runner.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -91,7 +92,8 @@ TEST(CliSortCheck, ExitsWithThreeWhenAnExactSorterIsWrong) {
     if (!TETRENDER_HAS_VTK || !TETRENDER_HAS_TETGEN) {
         GTEST_SKIP() << "needs VTK (to read .vtk) and TetGen (to convexify for --sort exact)";
     }
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string twisted = write_ring(dir, "twisted.vtk", 0.75);
     const std::string straight = write_ring(dir, "straight.vtk", 0.0);
 
@@ -142,7 +144,6 @@ TEST(CliSortCheck, ExitsWithThreeWhenAnExactSorterIsWrong) {
     EXPECT_EQ(step3.exit_code, 1);
     EXPECT_NE(step3.err.find("time step 3 out of range"), std::string::npos) << step3.err;
     EXPECT_EQ(step3.err.find('\n'), step3.err.size() - 1) << step3.err;
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

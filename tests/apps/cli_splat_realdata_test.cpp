@@ -5,6 +5,7 @@
 #include <core/image.h>
 #include <tests/apps/cli_runner.h>
 #include <tests/support/image_check.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -41,7 +42,8 @@ class SplatRealData : public ::testing::TestWithParam<Case> {};
 TEST_P(SplatRealData, NearTheProjectedTetrahedraPicture) {
     if (!testing::require_shared_data()) GTEST_SKIP() << "no shared data";
     const Case& c = GetParam();
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string scene = dir + "/scene.json";
     const std::string mesh =
         testing::shell_quote((std::filesystem::path(testing::shared_data_dir()) / c.file).string());
@@ -75,7 +77,6 @@ TEST_P(SplatRealData, NearTheProjectedTetrahedraPicture) {
         EXPECT_TRUE(
             testing::images_match(splat, pt, Vec3f(0.0f), bounds, "splat_" + v + "_" + name));
     }
-    std::filesystem::remove_all(dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, SplatRealData, ::testing::ValuesIn(kCases),
@@ -94,7 +95,8 @@ std::string slurp(const std::string& path) {
 // refuses is a one-line error.
 TEST(SplatVectorsRealData, TheCycleOfFramesAndItsErrors) {
     if (!testing::require_shared_data()) GTEST_SKIP() << "no shared data";
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = testing::shell_quote(
         (std::filesystem::path(testing::shared_data_dir()) / "carotid/carotid.vtk").string());
     const std::string quick = "render " + mesh + " --scalar scalars --size 96x72 --vectors vectors";
@@ -123,7 +125,6 @@ TEST(SplatVectorsRealData, TheCycleOfFramesAndItsErrors) {
     one_line(testing::run_cli(quick + " --sheet-buffer" + out), 2, "--sheet-buffer");
     one_line(testing::run_cli(quick + " --method pbvr-image" + out), 2, "for --method splat");
     EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // tetrender spotnoise on the shared data's vector fields (office, carotid, disk_out_ref,
 // combustor): every frame written, the spots move, and bad input is one line with no frames.
 #include <tests/apps/cli_runner.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 
@@ -44,7 +45,8 @@ class SpotNoiseRealData : public ::testing::TestWithParam<Case> {};
 TEST_P(SpotNoiseRealData, WritesMovingFrames) {
     if (!testing::require_shared_data()) GTEST_SKIP() << "no shared data";
     const Case& c = GetParam();
-    const std::string frames = testing::make_temp_dir() + "/frames";
+    const testing::TempDir temp;
+    const std::string frames = temp.string() + "/frames";
     const auto run = testing::run_cli("spotnoise " + mesh_path(c.file) + " --scalar " + c.scalar +
                                       " --iso " + c.iso + " --vectors " + c.vectors +
                                       " --count 3000 --steps 4 --size 64x64 --frames " +
@@ -76,7 +78,8 @@ TEST(SpotNoiseRealDataBadInput, OneLineErrorsAndNoFrames) {
         {"--scalar Temp --iso 400 --vectors V --count 10000001", "--count"},
     };
     for (const Bad& bad : cases) {
-        const std::string frames = testing::make_temp_dir() + "/frames";
+        const testing::TempDir temp;
+        const std::string frames = temp.string() + "/frames";
         const auto run =
             testing::run_cli("spotnoise " + mesh + " " + bad.args +
                              " --steps 1 --size 32x32 --frames " + testing::shell_quote(frames));

@@ -1,6 +1,7 @@
 // The tetrender command line: help, usage errors, bad files, info and tetrahedralize on
 // generated meshes.
 #include <tests/apps/cli_runner.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -75,7 +76,8 @@ TEST(Cli, UsageErrorsExitWithTwo) {
 }
 
 TEST(Cli, InfoDescribesAMesh) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string path = write_file(dir, "two.vtk", kTwoHexes);
     auto run = run_cli("info --json " + shell_quote(path));
     ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -92,11 +94,11 @@ TEST(Cli, InfoDescribesAMesh) {
     auto text = run_cli("info " + shell_quote(path));
     ASSERT_EQ(text.exit_code, 0) << text.err;
     EXPECT_NE(text.out.find("hexahedron 2"), std::string::npos) << text.out;
-    std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, TetrahedralizeWritesAVtuThatReadsBack) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string path = write_file(dir, "two.vtk", kTwoHexes);
     const std::string out = dir + "/two_tets.vtu";
     auto run = run_cli("tetrahedralize " + shell_quote(path) + " -o " + shell_quote(out));
@@ -106,7 +108,6 @@ TEST(Cli, TetrahedralizeWritesAVtuThatReadsBack) {
     const auto j = nlohmann::json::parse(info.out);
     EXPECT_EQ(j["cells_by_type"]["tetra"], 12);
     EXPECT_NEAR(j["tetrahedralization"]["volume"].get<double>(), 2.0, 1e-12);
-    std::filesystem::remove_all(dir);
 }
 
 // A unit cube as an ASCII STL (12 triangles, outward).
@@ -133,7 +134,8 @@ std::string unit_cube_stl() {
 // --tetgen asks for TetGen with no switches, empty ones or some; without it a surface is an
 // error that says to give it.
 TEST(Cli, TetgenWithOrWithoutSwitchesAndASurfaceWithoutIt) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string cube = shell_quote(write_file(dir, "cube.stl", unit_cube_stl()));
     const std::string out = dir + "/cube.vtu";
     for (const char* tetgen : {"--tetgen", "--tetgen ''", "--tetgen Y"}) {
@@ -159,7 +161,6 @@ TEST(Cli, TetgenWithOrWithoutSwitchesAndASurfaceWithoutIt) {
     EXPECT_EQ(huge.exit_code, 1);
     EXPECT_NE(huge.err.find("asks for at least 1e+09 tets"), std::string::npos) << huge.err;
     EXPECT_FALSE(std::filesystem::exists(out));
-    std::filesystem::remove_all(dir);
 }
 
 // The two hexes with a uniform velocity (speed, 0, 0) added to their point data.
@@ -173,7 +174,8 @@ std::string two_hexes_with_flow(double speed) {
 // A flow volume that could not fit in memory is refused before any growth (it ran 71 s into
 // bad_alloc before).
 TEST(Cli, FlowvolRefusesARunawaySizeUpFront) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string path = write_file(dir, "flow.vtk", two_hexes_with_flow(1.0));
     const std::string out = dir + "/fv.png";
     const auto run = run_cli("flowvol " + shell_quote(path) +
@@ -186,11 +188,11 @@ TEST(Cli, FlowvolRefusesARunawaySizeUpFront) {
         << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
     EXPECT_FALSE(std::filesystem::exists(out));
-    std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, FlowvolGrowsAndRenders) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string path = write_file(dir, "flow.vtk", two_hexes_with_flow(1.0));
     const std::string out = dir + "/fv.png", vtu = dir + "/fv.vtu";
     auto run = run_cli("flowvol " + shell_quote(path) +
@@ -209,14 +211,14 @@ TEST(Cli, FlowvolGrowsAndRenders) {
                            shell_quote(out + "2.png"));
     expect_one_line_error(missing);
     EXPECT_FALSE(std::filesystem::exists(out + "2.png"));
-    std::filesystem::remove_all(dir);
 }
 
 // demo --fused: two meshes written (the flow and the plume's tets, whose hexahedra fill
 // 4.35 x 3 x 1.9 behind the cylinder), drawn as one medium by the segment merge and by fused
 // particles; --flowvol with --fused is a usage error.
 TEST(Cli, DemoFusedWritesBothMeshesAndRenders) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string out = dir + "/fused.png", vtu = dir + "/demo.vtu";
     auto run = run_cli("demo --fused --tets 5000 --width 96 --height 54 --stats -o " +
                        shell_quote(out) + " --mesh-out " + shell_quote(vtu));
@@ -250,14 +252,14 @@ TEST(Cli, DemoFusedWritesBothMeshesAndRenders) {
                       shell_quote(dir + "/x.png"))
                   .exit_code,
               2);
-    std::filesystem::remove_all(dir);
 }
 
 // A .pvd series whose speed rises from 1 at t = 0 to 2 at t = 1: dye released at t = 0 for
 // 0.5 fills 0.25 x (0.5 + 0.125); a single file is not a series; running past t = 1 is an
 // error.
 TEST(Cli, FlowvolUnsteadySeries) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     write_file(dir, "s0.vtk", two_hexes_with_flow(1.0));
     write_file(dir, "s1.vtk", two_hexes_with_flow(2.0));
     const std::string series = write_file(
@@ -285,12 +287,12 @@ TEST(Cli, FlowvolUnsteadySeries) {
                           shell_quote(dir + "/c.png") + " --steps 2");
     expect_one_line_error(single);
     EXPECT_NE(single.err.find("time series"), std::string::npos) << single.err;
-    std::filesystem::remove_all(dir);
 }
 
 // The scene key flow_volume: the dye drawn instead of the scalar; its keys are checked.
 TEST(Cli, SceneWithAFlowVolume) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     write_file(dir, "flow.vtk", two_hexes_with_flow(1.0));
     const std::string common = R"("mesh": "flow.vtk", "scalar": "temperature",
       "transfer_function": {"color": [[0, 1, 1, 1]], "opacity": [[0, 0.5]], "unit_distance": 1},
@@ -314,11 +316,11 @@ TEST(Cli, SceneWithAFlowVolume) {
     expect_one_line_error(rejected);
     EXPECT_NE(rejected.err.find("$.flow_volume.stepz"), std::string::npos) << rejected.err;
     EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliBadInput, MissingEmptyAndGarbageFilesGiveOneLineErrors) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     expect_one_line_error(run_cli("info " + shell_quote(dir + "/nope.vtu")));
     expect_one_line_error(run_cli("info " + shell_quote(write_file(dir, "empty.vtu", ""))));
     expect_one_line_error(
@@ -328,11 +330,11 @@ TEST(CliBadInput, MissingEmptyAndGarbageFilesGiveOneLineErrors) {
     truncated.resize(truncated.size() / 2);
     expect_one_line_error(
         run_cli("info " + shell_quote(write_file(dir, "truncated.vtk", truncated))));
-    std::filesystem::remove_all(dir);
 }
 
 TEST(CliBadInput, NoHalfWrittenOutputOnFailure) {
-    const std::string dir = make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string out = dir + "/out.vtu";
     auto run =
         run_cli("tetrahedralize " + shell_quote(dir + "/missing.vtk") + " -o " + shell_quote(out));
@@ -342,7 +344,6 @@ TEST(CliBadInput, NoHalfWrittenOutputOnFailure) {
     auto unwritable = run_cli("tetrahedralize " + shell_quote(in) + " -o " +
                               shell_quote(dir + "/no/such/dir/out.vtu"));
     expect_one_line_error(unwritable);
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

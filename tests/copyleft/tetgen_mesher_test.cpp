@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -75,13 +77,77 @@ TEST(TetgenMesher, MaxVolumeIsRespected) {
     }
 }
 
+// The largest radius-edge ratio over the tets (circumradius over shortest edge: what TetGen's
+// -q bounds).
+double max_radius_edge_ratio(const TetMesh& mesh) {
+    double worst = 0;
+    for (CellId t = 0; t < mesh.num_tets(); ++t) {
+        const Tet& tet = mesh.tet(t);
+        const Vec3 o = mesh.point(tet[0]);
+        const Vec3 a = mesh.point(tet[1]) - o, b = mesh.point(tet[2]) - o,
+                   c = mesh.point(tet[3]) - o;
+        const Vec3 centre = (glm::dot(a, a) * glm::cross(b, c) + glm::dot(b, b) * glm::cross(c, a) +
+                             glm::dot(c, c) * glm::cross(a, b)) /
+                            (2.0 * glm::dot(a, glm::cross(b, c)));
+        double shortest = std::min({glm::length(a), glm::length(b), glm::length(c)});
+        shortest = std::min({shortest, glm::length(b - a), glm::length(c - a), glm::length(c - b)});
+        worst = std::max(worst, glm::length(centre) / shortest);
+    }
+    return worst;
+}
+
+std::size_t num_boundary_faces(const TetMesh& mesh) {
+    auto adjacency = build_face_adjacency(mesh);
+    EXPECT_TRUE(adjacency.ok());
+    return adjacency.ok() ? adjacency->boundary_faces.size() : 0;
+}
+
 TEST(TetgenMesher, NoQualityAndExtraSwitches) {
+    // A slab 1 x 1 x 0.1: its 8 corners alone make flat tets.
+    SurfaceMesh slab;
+    add_box(slab, Vec3(0.0), Vec3(1.0, 1.0, 0.1));
     TetgenOptions options;
+    // No quality meshing (-pQ alone): the corners only, and their flat tets.
     options.quality_ratio = 0;
+    auto bare = tetgen_mesh_surface(slab, options);
+    ASSERT_TRUE(bare.ok()) << bare.error().to_string();
+    EXPECT_EQ(bare->num_points(), 8u);
+    EXPECT_NEAR(checked_volume(*bare), 0.1, 1e-12);
+    const double bare_ratio = max_radius_edge_ratio(*bare);
+    // Quality 1.5 (-q1.5): Steiner points until every tet is within the bound, the boundary
+    // split too.
+    options.quality_ratio = 1.5;
+    auto quality = tetgen_mesh_surface(slab, options);
+    ASSERT_TRUE(quality.ok()) << quality.error().to_string();
+    const double quality_ratio = max_radius_edge_ratio(*quality);
+    EXPECT_NEAR(checked_volume(*quality), 0.1, 1e-12);
+    // Extra switches: Y keeps the 12 surface triangles unsplit (Steiner points only inside, and
+    // here, a slab one tet thick, none); T (a coplanarity tolerance) is accepted; S20 stops
+    // after 20 Steiner points.
     options.extra_switches = "YT0.00000001";
-    auto mesh = tetgen_mesh_surface(unit_cube(), options);
-    ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
-    EXPECT_NEAR(checked_volume(*mesh), 1.0, 1e-9);
+    auto kept = tetgen_mesh_surface(slab, options);
+    ASSERT_TRUE(kept.ok()) << kept.error().to_string();
+    EXPECT_NEAR(checked_volume(*kept), 0.1, 1e-12);
+    options.extra_switches = "S20";
+    auto limited = tetgen_mesh_surface(slab, options);
+    ASSERT_TRUE(limited.ok()) << limited.error().to_string();
+    EXPECT_NEAR(checked_volume(*limited), 0.1, 1e-12);
+    std::printf(
+        "no quality: %zu points, ratio %.3f; q1.5: %zu points, %zu boundary faces, ratio %.3f; "
+        "Y: %zu points, %zu boundary faces; S20: %zu points\n",
+        bare->num_points(), bare_ratio, quality->num_points(), num_boundary_faces(*quality),
+        quality_ratio, kept->num_points(), num_boundary_faces(*kept), limited->num_points());
+    // Measured: no quality 8 points, ratio 7.09 (bound 5: the flat tets are there); q1.5 100
+    // points (bound 80 = 100 minus a fifth), 196 boundary faces, ratio 1.355 (bound: the switch's
+    // 1.5); Y 8 points and the 12 triangles; S20 28 points (all 20 used: q1.5 alone adds 92).
+    EXPECT_GT(bare_ratio, 5.0);
+    EXPECT_EQ(num_boundary_faces(*bare), 12u);
+    EXPECT_GE(quality->num_points(), 80u);
+    EXPECT_LE(quality_ratio, 1.5);
+    EXPECT_GT(num_boundary_faces(*quality), 12u);
+    EXPECT_EQ(num_boundary_faces(*kept), 12u);
+    EXPECT_LT(kept->num_points(), quality->num_points());
+    EXPECT_EQ(limited->num_points(), 8u + 20u);
 }
 
 TEST(TetgenMesher, CavityGivenByAHolePoint) {

@@ -236,8 +236,9 @@ TEST(FlowtexScene, VaryingVolumeInFrontMatchesTheRayIntegral) {
         worst = std::max(worst, glm::length(Vec3(seen.pixels[p]) - expected));
     }
     EXPECT_GT(counted, 7000u);  // measured 7,744
-    printf("MEASURE %g light %g %g %g T %g\n", worst, light.x, light.y, light.z, through);
-    EXPECT_LT(worst, 1e-3);  // measured
+    // Measured 5.8e-5 (the pre-integrated table's accuracy against the fine midpoint sum; light
+    // 0.506, 0.465, 0.398, transmittance 0.481); bound 1e-4, the measured value plus about 70%.
+    EXPECT_LT(worst, 1e-4);
 }
 
 // Spot noise in a clear volume: the frames of spot_noise_frames from the same camera, bit for bit.

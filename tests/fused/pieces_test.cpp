@@ -4,6 +4,7 @@
 // segment merge and by the reference ray caster (`--integrator reference`).
 #include <tests/apps/cli_runner.h>
 #include <tests/support/image_check.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 
@@ -77,7 +78,8 @@ void write_piece(const std::string& path, int i0, int i1, int ny, int nz, std::u
 }
 
 TEST(Pieces, SeparateVolumesEqualTheWholeFile) {
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const int ny = 4, nz = 4;
     const int cuts[] = {0, 2, 3, 6};  // a 6 x 4 x 4 grid in three pieces along x
     std::ofstream pvtu(dir + "/whole.pvtu");
@@ -131,7 +133,6 @@ TEST(Pieces, SeparateVolumesEqualTheWholeFile) {
     EXPECT_TRUE(testing::images_match(testing::read_pfm(dir + "/pieces_ref.pfm"),
                                       testing::read_pfm(dir + "/whole_ref.pfm"), Vec3f(0.0f),
                                       {140.0, 1e-5}, "pieces_vs_whole_reference"));
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <core/result.h>
 #include <mesh/unstructured_mesh.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 
@@ -16,19 +17,8 @@ namespace tr::test {
 
 namespace fs = std::filesystem;
 
-// A fresh folder under the system temp dir, removed at destruction.
-class TempDir {
-  public:
-    TempDir();
-    ~TempDir();
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-
-  private:
-    fs::path path_;
-};
+// A fresh folder under the system temp dir, removed at destruction (tests/support/temp_dir.h).
+using TempDir = ::tr::testing::TempDir;
 
 void write_file(const fs::path& path, const std::string& bytes);
 std::string read_file(const fs::path& path);

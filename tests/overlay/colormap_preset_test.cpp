@@ -1,6 +1,7 @@
 // ParaView colour-map presets: reading, writing back, the built-in maps, errors with where.
 #include <project/colormap.h>
 #include <project/colormap_preset.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 
@@ -10,11 +11,6 @@
 
 namespace tr {
 namespace {
-
-std::filesystem::path temp_file(const std::string& name) {
-    return std::filesystem::temp_directory_path() /
-           ("tetrender_preset_" + std::to_string(::getpid()) + "_" + name);
-}
 
 double difference(const Vec3& a, const Vec3& b) {
     return std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
@@ -27,10 +23,10 @@ TEST(ColormapPreset, WriteThenReadGivesTheSameTransferFunction) {
                                   {7.25, {0.9, 0.8, 0.123456789012345}}},
                                  {{-2.5, 0.0}, {1.0, 0.35}, {7.25, 0.9}}, 0.5)
             .value();
-    const auto file = temp_file("roundtrip.json");
+    const testing::TempDir temp;
+    const auto file = temp / "roundtrip.json";
     ASSERT_TRUE(write_colormap_presets({preset_from_transfer_function(tf, "mine")}, file).ok());
     auto back = read_colormap_preset(file, "mine");
-    std::filesystem::remove(file);
     ASSERT_TRUE(back.ok()) << back.error().to_string();
     EXPECT_EQ(back->color_space, "RGB");
     ASSERT_EQ(back->rgb_points.size(), tf.color_points().size());
@@ -66,12 +62,12 @@ const char* kSample = R"([
 ])";
 
 TEST(ColormapPreset, ASampleFileGivesTheColoursAtItsControlPoints) {
-    const auto file = temp_file("sample.json");
+    const testing::TempDir temp;
+    const auto file = temp / "sample.json";
     std::ofstream(file) << kSample;
     auto three = read_colormap_preset(file, "three");  // case-insensitive
     auto first = read_colormap_preset(file);           // no name: the first
     auto missing = read_colormap_preset(file, "Plasma");
-    std::filesystem::remove(file);
     ASSERT_TRUE(three.ok()) << three.error().to_string();
     EXPECT_EQ(three->name, "Three");
     ASSERT_TRUE(first.ok());

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -107,16 +108,74 @@ TEST(Legend, DrawsOnlyInsideItsRectangleAndAvoidsTheVolume) {
     EXPECT_EQ(filled(layout->opacity_strip.y1 - 1), 0);
 }
 
-TEST(Legend, LightBackgroundGivesDarkText) {
-    Image image(300, 300, Vec3f(1.0f));
+// The title's and the labels' pixels of a legend drawn over a uniform grey `background`: those
+// that differ from it, in the title's box (above the bar) and right of the tick marks.
+struct TextPixels {
+    int title = 0, labels = 0;        // pixels that differ from the background
+    float darkest = 1, lightest = 0;  // their extreme luminances
+    int darker = 0, lighter = 0;      // how many are darker or lighter than the background
+};
+
+float luminance(const Vec3f& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+TextPixels legend_text(float background) {
+    Image image(300, 300, Vec3f(background));
     LegendSpec spec;
-    spec.title = "T";
+    spec.title = "Temperature";
     spec.opacity_strip = false;
+    spec.font_pixels = 16;
     auto layout = draw_legend(image, viridis(0, 1), spec);
-    ASSERT_TRUE(layout.ok());
+    EXPECT_TRUE(layout.ok());
+    if (!layout.ok()) return {};
     EXPECT_TRUE(layout->opacity_strip.empty());
-    // The bar's frame is black.
-    EXPECT_EQ(image.at(layout->bar.x0 - 1, layout->bar.y0 + 5), Vec3f(0.0f));
+    const PixelRect title =
+        (*Font::shared_default())->measure(spec.title, 16, layout->whole.x0, layout->whole.y0);
+    // At f = 16 the tick marks end 10 columns right of the bar (1 + f / 3 + f / 4) and the
+    // labels start at 14 (overlay/legend.cpp): the labels' pixels counted from 16 on.
+    const int labels_x0 = layout->bar.x1 + 16;
+    const float bg = luminance(Vec3f(background));
+    TextPixels t;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const bool in_title = x >= title.x0 && x < title.x1 && y >= title.y0 && y < title.y1;
+            const bool in_labels = x >= labels_x0 && x < layout->whole.x1 &&
+                                   y >= layout->bar.y0 - 16 && y < layout->bar.y1 + 16;
+            const float l = luminance(image.at(x, y));
+            if ((!in_title && !in_labels) || image.at(x, y) == Vec3f(background)) continue;
+            (in_title ? t.title : t.labels) += 1;
+            t.darkest = std::min(t.darkest, l);
+            t.lightest = std::max(t.lightest, l);
+            t.darker += l < bg ? 1 : 0;
+            t.lighter += l > bg ? 1 : 0;
+        }
+    }
+    std::printf("background %.2f: title %d pixels, labels %d, luminance %.3f .. %.3f\n", background,
+                t.title, t.labels, t.darkest, t.lightest);
+    return t;
+}
+
+TEST(Legend, LightBackgroundGivesDarkText) {
+    // Over light grey the text is black: every pixel of the title and the labels is darker than
+    // the background, and a fully covered one is black.
+    const TextPixels t = legend_text(0.8f);
+    // Measured: 525 pixels in the title, 615 in the labels (the same over dark grey); bounds
+    // a quarter below.
+    EXPECT_GT(t.title, 390);
+    EXPECT_GT(t.labels, 460);
+    EXPECT_EQ(t.lighter, 0);
+    EXPECT_EQ(t.darker, t.title + t.labels);
+    EXPECT_LT(t.darkest, 0.01f);
+}
+
+TEST(Legend, DarkBackgroundGivesLightText) {
+    // Over dark grey the text is white: every pixel lighter than the background, a fully
+    // covered one white.
+    const TextPixels t = legend_text(0.2f);
+    EXPECT_GT(t.title, 390);
+    EXPECT_GT(t.labels, 460);
+    EXPECT_EQ(t.darker, 0);
+    EXPECT_EQ(t.lighter, t.title + t.labels);
+    EXPECT_GT(t.lightest, 0.99f);
 }
 
 TEST(Legend, BadInputIsAOneLineError) {

@@ -1,4 +1,5 @@
 #include <tests/pbvr/pbvr_test_scenes.h>
+#include <tests/support/freudenthal_box.h>
 
 #include <cmath>
 #include <limits>
@@ -23,34 +24,7 @@ double box_chord(const Ray& r, double side) {
 }  // namespace
 
 TetMesh uniform_box(int n, double side) {
-    std::vector<Vec3> points;
-    auto id = [&](int i, int j, int k) {
-        return static_cast<PointId>((k * (n + 1) + j) * (n + 1) + i);
-    };
-    for (int k = 0; k <= n; ++k) {
-        for (int j = 0; j <= n; ++j) {
-            for (int i = 0; i <= n; ++i) points.push_back(Vec3(i, j, k) * (side / n));
-        }
-    }
-    std::vector<Tet> tets;
-    const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-    for (int k = 0; k < n; ++k) {
-        for (int j = 0; j < n; ++j) {
-            for (int i = 0; i < n; ++i) {
-                for (const auto& path : paths) {
-                    int c[3] = {i, j, k};
-                    Tet tet;
-                    tet[0] = id(c[0], c[1], c[2]);
-                    for (int s = 0; s < 3; ++s) {
-                        ++c[path[s]];
-                        tet[s + 1] = id(c[0], c[1], c[2]);
-                    }
-                    tets.push_back(tet);
-                }
-            }
-        }
-    }
-    TetMesh mesh = TetMesh::create(std::move(points), std::move(tets)).value();
+    TetMesh mesh = freudenthal_box(n, n, n, Vec3(0.0), Vec3(side));
     std::vector<double> ones(mesh.num_points(), 1.0);
     (void)mesh.add_point_field(make_double_field("one", 1, ones));
     return mesh;

@@ -178,7 +178,7 @@ TEST(Methods, SplatVectorCycleAndItsRefusals) {
     auto cycle = render_splat_cycle(pipeline, scene, "swirl", 4);
     ASSERT_TRUE(cycle.ok()) << cycle.error().to_string();
     ASSERT_EQ(cycle->frames.size(), 4u);
-    EXPECT_GT(cycle->stats.number("splats_drawn"), 100);
+    EXPECT_GT(cycle->stats.number("splats_drawn"), 650);  // measured 729; bound a tenth below
     scene.method = method("splat");
     scene.method->options["vectors"] = std::string("swirl");
     scene.method->options["cycle"] = std::int64_t{4};
@@ -259,10 +259,12 @@ TEST(Volumes, OneEntryRendersExactlyAsTheTopLevelKeys) {
     auto other = b.render(listed);
     ASSERT_TRUE(one.ok() && other.ok());
     EXPECT_TRUE(identical(one->image, other->image));
-    EXPECT_GT(compare_images(one->image, Image(96, 96, Vec3f(0.05f, 0.05f, 0.1f)),
-                             Vec3f(0.05f, 0.05f, 0.1f))
-                  .foreground_pixels,
-              3000u);  // the volume covers the middle of the picture
+    const std::size_t covered = compare_images(one->image, Image(96, 96, Vec3f(0.05f, 0.05f, 0.1f)),
+                                               Vec3f(0.05f, 0.05f, 0.1f))
+                                    .foreground_pixels;
+    // The volume covers the middle of the picture: measured 4,912 of 9,216 pixels; bound 4,400
+    // (a tenth below).
+    EXPECT_GT(covered, 4400u);
 }
 
 TEST(Volumes, SeveralAreMergedPerPixel) {
@@ -274,7 +276,8 @@ TEST(Volumes, SeveralAreMergedPerPixel) {
     ASSERT_TRUE(twice.ok()) << twice.error().to_string();
     EXPECT_EQ(std::get<std::string>(*twice->stats.find("compositing")), "merged");
     EXPECT_EQ(twice->stats.number("volumes"), 2.0);
-    EXPECT_GT(twice->stats.number("overlap_intervals"), 1000.0);
+    // Measured 26,427 overlapping intervals; bound 23,700 (a tenth below).
+    EXPECT_GT(twice->stats.number("overlap_intervals"), 23700.0);
     scene.volumes.pop_back();
     auto once = pipeline.render(scene);
     ASSERT_TRUE(once.ok());
@@ -287,7 +290,10 @@ TEST(Volumes, SeveralAreMergedPerPixel) {
         const double d2 = glm::length(twice->image.pixels[p] - background);
         (d2 >= d1 ? more : less) += d2 - d1;
     }
-    EXPECT_GT(more, 10 * -less);
+    // Measured: 646.5 summed over the pixels farther, 0 over those nearer (none is); bounds a
+    // tenth below the one, float rounding for the other.
+    EXPECT_GT(more, 580.0);
+    EXPECT_GT(less, -1e-4);
     // A flow volume grows through one mesh only.
     Scene flow = scene_of(grid(2));
     flow.volumes.push_back(flow.volumes[0]);
@@ -461,7 +467,9 @@ TEST(Pipeline, OpaqueSurfacesHandedOverOrFromTheMesh) {
     ASSERT_TRUE(without.ok());
     const ImageComparison c =
         compare_images(with->image, without->image, Vec3f(0.05f, 0.05f, 0.1f));
-    EXPECT_GT(c.max_difference, 0.1);  // the red body shows through the volume
+    // The red body shows through the volume: measured largest difference 0.549; bound 0.49 (a
+    // tenth below).
+    EXPECT_GT(c.max_difference, 0.49);
     OpaqueSpec side_set;
     side_set.side_set = "wall";
     plain.opaque.push_back(side_set);
@@ -494,10 +502,10 @@ TEST(Pipeline, FlowVolumeLayerByLayer) {
     EXPECT_EQ(layers, (std::vector<std::size_t>{0, 1, 2, 3, 4}));
     ASSERT_NE(result->flow_volume, nullptr);
     EXPECT_EQ(result->flow_volume->layer_tets.size(), 5u);
-    EXPECT_GT(compare_images(result->image, Image(80, 80, Vec3f(0.05f, 0.05f, 0.1f)),
-                             Vec3f(0.05f, 0.05f, 0.1f))
-                  .foreground_pixels,
-              200u);
+    const std::size_t dyed = compare_images(result->image, Image(80, 80, Vec3f(0.05f, 0.05f, 0.1f)),
+                                            Vec3f(0.05f, 0.05f, 0.1f))
+                                 .foreground_pixels;
+    EXPECT_GT(dyed, 245u);  // measured 274 pixels of dye; bound a tenth below
     // The reference ray caster draws no flow volume: an error, not another picture.
     options.reference = true;
     EXPECT_FALSE(pipeline.render(scene, options).ok());

@@ -8,6 +8,7 @@
 #include <pipeline/splat_method.h>
 #include <project/colormap.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 
@@ -16,7 +17,6 @@
 #include <fstream>
 #include <limits>
 #include <string>
-#include <unistd.h>
 
 namespace tr {
 namespace {
@@ -101,12 +101,10 @@ TEST(SplatBadInput, ZeroSpacingKey) {
 }
 
 #if TETRENDER_HAS_VTK
-// An ImageData file of `extent` ("0 n 0 n 0 n") and `spacing` with the point scalar `s`.
-std::filesystem::path write_vti(const std::string& name, int nx, int ny, int nz,
-                                const std::string& spacing) {
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("tetrender_splat_badinput_" + std::to_string(getpid()));
-    std::filesystem::create_directories(dir);
+// An ImageData file `name` in `dir` of nx x ny x nz points and `spacing` with the point scalar
+// `s`.
+std::filesystem::path write_vti(const std::filesystem::path& dir, const std::string& name, int nx,
+                                int ny, int nz, const std::string& spacing) {
     const std::string extent = "0 " + std::to_string(nx - 1) + " 0 " + std::to_string(ny - 1) +
                                " 0 " + std::to_string(nz - 1);
     std::string values;
@@ -140,9 +138,10 @@ TEST(SplatBadInput, LatticesWithOnePointPerAxisOrZeroSpacing) {
         {"one_per_axis_z.vti", 4, 4, 1, "1 1 1", "not a volume (dimensions 4 x 4 x 1)"},
         {"zero_spacing.vti", 4, 4, 4, "0 0 0", "no tetrahedron of non-zero volume"},
         {"zero_spacing_x.vti", 4, 4, 4, "0 1 1", "no tetrahedron of non-zero volume"}};
+    const testing::TempDir temp("tetrender_splat_badinput_");
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
-        const auto path = write_vti(c.name, c.nx, c.ny, c.nz, c.spacing);
+        const auto path = write_vti(temp.path(), c.name, c.nx, c.ny, c.nz, c.spacing);
         const std::string line = error_of(file_scene(path));
         std::printf("[ %s ] %s\n", c.name, line.c_str());
         EXPECT_TRUE(one_line(line)) << line;
@@ -150,9 +149,8 @@ TEST(SplatBadInput, LatticesWithOnePointPerAxisOrZeroSpacing) {
         EXPECT_NE(line.find(c.says), std::string::npos) << line;
     }
     // The same lattice with its spacing renders.
-    const auto good = write_vti("good.vti", 4, 4, 4, "1 1 1");
+    const auto good = write_vti(temp.path(), "good.vti", 4, 4, 4, "1 1 1");
     EXPECT_EQ(error_of(file_scene(good)), "");
-    std::filesystem::remove_all(good.parent_path());
 }
 #endif
 

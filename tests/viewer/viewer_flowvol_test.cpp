@@ -8,6 +8,7 @@
 #include <project/opaque_geometry.h>
 #include <tests/apps/cli_runner.h>
 #include <tests/support/image_check.h>
+#include <tests/support/temp_dir.h>
 #include <tests/viewer/viewer_fixtures.h>
 #include <tests/viewer/viewer_runner.h>
 
@@ -18,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -36,12 +38,12 @@ using testing::shell_quote;
 // cylinder (r 0.12, along z through (1.4, 0.5)) as an .off file; and a scene with a flow
 // volume released at x = 0.3 and the cylinder opaque.
 struct FlowScene {
-    std::string dir, mesh, scene;
+    std::shared_ptr<const testing::TempDir> folder = std::make_shared<const testing::TempDir>();
+    std::string dir = folder->string(), mesh, scene;
 };
 
 FlowScene make_flow_scene(int n = 8, bool with_velocity = true) {
     FlowScene t;
-    t.dir = testing::make_temp_dir();
     TetMesh mesh = testing::freudenthal_box(2 * n, n, n, Vec3(0.0), Vec3(2.0, 1.0, 1.0));
     std::vector<float> scalar, velocity;
     for (const Vec3& p : mesh.points()) {
@@ -120,7 +122,6 @@ TEST(ViewerFlowVolume, SceneMatchesTetrenderRender) {
         EXPECT_TRUE(images_match(gl, cpu, kBackground, bounds,
                                  std::string("viewer_flowvol_") + integrator));
     }
-    if (!HasFailure()) std::filesystem::remove_all(t.dir);
 }
 
 // Headless frames show the dye growing, a layer a frame; the last frame shows all of it, the
@@ -158,7 +159,6 @@ TEST(ViewerFlowVolume, GrowsOverFramesAndTheLastFrameIsComplete) {
     EXPECT_GT(early_lit, 0.015);
     EXPECT_GT(full_lit, 0.066);
     EXPECT_GT(full_lit, 3.5 * early_lit);
-    if (!HasFailure()) std::filesystem::remove_all(t.dir);
 }
 
 // The interactive path with a flow volume: the grower thread, the panel's section, a few frames.
@@ -169,7 +169,6 @@ TEST(ViewerFlowVolume, InteractiveWindowGrowsIt) {
     EXPECT_EQ(run.exit_code, 0) << run.err;
     // --exit-after-frames waits for the growth: it was grown and shown.
     EXPECT_NE(run.out.find("flow volume: 20 layers"), std::string::npos) << run.out;
-    std::filesystem::remove_all(t.dir);
 }
 
 // Errors: an array that is not a vector array of the mesh is one line and exit 1 (before any
@@ -211,8 +210,6 @@ TEST(ViewerFlowVolume, BadVectorArraysAndCommandLines) {
     EXPECT_EQ(run.exit_code, 2) << run.err;
     run = run_viewer(shell_quote(t.mesh) + " --steps 5", false);
     EXPECT_EQ(run.exit_code, 2) << run.err;
-    std::filesystem::remove_all(t.dir);
-    std::filesystem::remove_all(plain.dir);
 }
 
 // A seed outside the domain: growth fails, one line, exit 1, no picture.
@@ -226,7 +223,6 @@ TEST(ViewerFlowVolume, SeedOutsideTheDomainIsAnError) {
                                 shell_quote(out));
     expect_one_line_error(run);
     EXPECT_FALSE(std::filesystem::exists(out));
-    std::filesystem::remove_all(t.dir);
 }
 
 }  // namespace

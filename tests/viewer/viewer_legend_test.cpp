@@ -57,7 +57,6 @@ TEST(ViewerLegend, OnByDefaultOffWhenAskedNeverInAPlainScreenshot) {
     // Plain headless screenshots have no ImGui: bit-identical either way.
     ASSERT_EQ(plain_on.width, 240);
     EXPECT_EQ(plain_on.pixels, plain_off.pixels);
-    std::filesystem::remove_all(t.dir);
 }
 
 TEST(ViewerLog, ShowsTheDecadesOfTheMeshScalar) {
@@ -95,7 +94,6 @@ TEST(ViewerLog, ShowsTheDecadesOfTheMeshScalar) {
     const auto scene = viewer::load_viewer_scene(options);
     ASSERT_FALSE(scene.ok());
     EXPECT_NE(scene.error().message.find("--log is for a mesh file"), std::string::npos);
-    std::filesystem::remove_all(t.dir);
 }
 
 TEST(ViewerLegend, BadValueIsRefusedInOneLine) {
@@ -106,7 +104,6 @@ TEST(ViewerLegend, BadValueIsRefusedInOneLine) {
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.err.find("--legend"), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(t.dir + "/x.pfm"));
-    std::filesystem::remove_all(t.dir);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // issue 6's "done when". The scalar is the one the render tests use, or the viewer's default
 // (first point array, else first cell array, else a constant) where the dataset has none.
 #include <tests/apps/cli_runner.h>
+#include <tests/support/temp_dir.h>
 #include <tests/viewer/viewer_runner.h>
 
 #include <gtest/gtest.h>
@@ -50,7 +51,8 @@ TEST_P(ViewerRealData, OpensAndDraws) {
     }
     if (!testing::require_xvfb()) GTEST_SKIP() << "no xvfb-run";
     const Case& c = GetParam();
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string out = dir + "/shot.pfm";
     std::string args =
         testing::shell_quote((std::filesystem::path(testing::shared_data_dir()) / c.file).string());
@@ -68,7 +70,6 @@ TEST_P(ViewerRealData, OpensAndDraws) {
     std::printf("[ %s ] lit fraction %.4f (measured %.4f)\n", c.file, lit, c.lit);
     EXPECT_GT(lit, 0.8 * c.lit) << c.file;
     EXPECT_LT(lit, 1.25 * c.lit) << c.file;
-    std::filesystem::remove_all(dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, ViewerRealData, ::testing::ValuesIn(kCases),

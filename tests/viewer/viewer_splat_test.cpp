@@ -4,6 +4,7 @@
 // plays in the window; bad splat options are one line.
 #include <tests/apps/cli_runner.h>
 #include <tests/support/image_check.h>
+#include <tests/support/temp_dir.h>
 #include <tests/viewer/viewer_runner.h>
 
 #include <gtest/gtest.h>
@@ -52,7 +53,8 @@ std::string bytes(const std::string& path) {
 
 TEST(ViewerSplat, TheHeadlessPictureIsRendersAndTheCyclePlays) {
     if (!require_xvfb()) GTEST_SKIP() << "no xvfb-run";
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string lattice = shell_quote(write_lattice(dir));
     const std::string quick = " --scalar h --size 160x120 ";
     // Scalar splats: the same picture, bit for bit.
@@ -94,7 +96,6 @@ TEST(ViewerSplat, TheHeadlessPictureIsRendersAndTheCyclePlays) {
         EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << bad << ": " << run.err;
         EXPECT_FALSE(std::filesystem::exists(dir + "/x.png")) << bad;
     }
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

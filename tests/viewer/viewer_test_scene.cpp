@@ -37,7 +37,6 @@ std::string write_test_scene_variant(const TestScene& t, const std::string& name
 
 TestScene make_test_scene(int n, const std::string& opacity, const std::string& method) {
     TestScene t;
-    t.dir = make_temp_dir();
     TetMesh mesh = freudenthal_box(n, n, n, Vec3(-1.0), Vec3(1.0));
     std::vector<float> blob;
     for (const Vec3& p : mesh.points()) {

@@ -4,14 +4,18 @@
 // seconds under llvmpipe).
 
 #include <core/math.h>
+#include <tests/support/temp_dir.h>
 
+#include <memory>
 #include <string>
 
 namespace tr::testing {
 
-// Where make_test_scene wrote its files (a fresh temporary folder).
+// Where make_test_scene wrote its files: a fresh temporary folder, removed with the last copy of
+// the TestScene (also when an assertion ends the test early).
 struct TestScene {
-    std::string dir, mesh, scene, cylinder;
+    std::shared_ptr<const TempDir> folder = std::make_shared<const TempDir>();
+    std::string dir = folder->string(), mesh, scene, cylinder;
 };
 
 // The opacity points of the default scene (scalar, opacity) as JSON.
