@@ -1,5 +1,5 @@
 #include <apps/cli_common.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 #include <nlohmann/json.hpp>
 

@@ -26,7 +26,7 @@ ProgressFn terminal_progress();
 // a scene from a quick look.
 bool is_scene_file(const std::string& path);
 
-// Parses "WxH" with both sides in [1, kMaxImageSide] (project/scene.h).
+// Parses "WxH" with both sides in [1, kMaxImageSide] (pipeline/scene.h).
 bool parse_image_size(const std::string& text, int& width, int& height);
 
 // Checks, before any work, that `path` can be written: its extension is one of `extensions`

@@ -7,7 +7,7 @@
 #include <io/write_vtu.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 #include <chrono>
 #include <cmath>

@@ -10,8 +10,8 @@
 #include <pipeline/paraview_camera.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
+#include <pipeline/scene.h>
 #include <project/colormap_preset.h>
-#include <project/scene.h>
 
 #include <algorithm>
 #include <cmath>

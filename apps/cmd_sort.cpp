@@ -4,8 +4,8 @@
 #include <apps/cli_common.h>
 #include <apps/commands.h>
 #include <pipeline/pipeline.h>
+#include <pipeline/scene.h>
 #include <pipeline/sort_check.h>
-#include <project/scene.h>
 
 #include <nlohmann/json.hpp>
 

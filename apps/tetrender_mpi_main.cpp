@@ -9,7 +9,7 @@
 #include <distributed/mpi_world.h>
 #include <io/write_image.h>
 #include <pipeline/movie.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 #include <CLI/CLI.hpp>
 

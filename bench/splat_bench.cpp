@@ -3,7 +3,7 @@
 // tests/splat/splat_compositing_test.cpp, the same orthographic camera) in memory: the raster
 // alone, without reading or tetrahedralizing the file. Arguments: kernel (0 Crawfis-Max,
 // 1 Gaussian), compositing (0 per splat, 1 sheet buffer), lattice cells per axis.
-#include <project/splat_renderer.h>
+#include <project/splat/splat_renderer.h>
 
 #include <benchmark/benchmark.h>
 

@@ -23,10 +23,14 @@ function(tr_add_module name)
           ARCHIVE DESTINATION lib LIBRARY DESTINATION lib RUNTIME DESTINATION bin)
 endfunction()
 
-# tr_add_test(name SOURCES ... DEPS ... LABELS ...): a GoogleTest executable registered with
-# ctest, every test case labelled.
+# tr_add_test(name SOURCES ... DEPS ... LABELS ... [PROCESSORS n]): a GoogleTest executable
+# registered with ctest, every test case labelled; PROCESSORS: the cores one test case keeps
+# busy (ctest -j counts them, so a test of several processes does not share its cores).
 function(tr_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "PROCESSORS" "SOURCES;DEPS;LABELS" ${ARGN})
+  if(NOT ARG_PROCESSORS)
+    set(ARG_PROCESSORS 1)
+  endif()
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main
                                         tetrender_warnings)
@@ -39,7 +43,8 @@ function(tr_add_test name)
   set(label_script ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
   file(WRITE ${label_script}
        "if(NOT \"\${${name}_TESTS}\" STREQUAL \"\")\n"
-       "  set_tests_properties(\${${name}_TESTS} PROPERTIES LABELS \"${ARG_LABELS}\")\n"
+       "  set_tests_properties(\${${name}_TESTS} PROPERTIES LABELS \"${ARG_LABELS}\"\n"
+       "                       PROCESSORS ${ARG_PROCESSORS})\n"
        "endif()\n")
   set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${label_script})
 endfunction()

@@ -1,4 +1,5 @@
 #include <core/parallel.h>
+#include <core/stopwatch.h>
 #include <distributed/detail/collectives.h>
 #include <distributed/detail/guarded.h>
 #include <distributed/detail/icet_compositor.h>

@@ -30,7 +30,7 @@
 #include <distributed/mpi_world.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/render_stats.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 #include <memory>
 #include <string>

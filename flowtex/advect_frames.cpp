@@ -1,3 +1,4 @@
+#include <core/stopwatch.h>
 #include <flowtex/advect_frames.h>
 #include <flowtex/advected_sheets.h>
 
@@ -6,11 +7,6 @@
 
 namespace tr {
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
 
 // The sheets' options of `options`; a slice with only its point or its normal given takes the
 // other from the default slice (the bounds' centre; the normal along their thinnest axis).

@@ -1,3 +1,4 @@
+#include <core/stopwatch.h>
 #include <flowtex/flow.h>
 #include <flowtex/spot_noise_frames.h>
 
@@ -6,11 +7,6 @@
 
 namespace tr {
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
 
 std::string scalar_arrays(const TetMesh& mesh) {
     std::string names;

@@ -1,7 +1,7 @@
-// libFuzzer target: scene JSON text through parse_scene() (project/scene.h). Any input must give
+// libFuzzer target: scene JSON text through parse_scene() (pipeline/scene.h). Any input must give
 // a Scene or an Error; a crash, a hang, a leak or undefined behaviour is a finding.
 
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 #include <cstddef>
 #include <cstdint>

@@ -8,7 +8,7 @@
 #include <core/result.h>
 #include <overlay/legend.h>
 #include <pipeline/pipeline.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 namespace tr {
 

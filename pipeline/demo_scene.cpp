@@ -1,4 +1,5 @@
 #include <core/config.h>
+#include <core/stopwatch.h>
 #include <mesh/tetrahedralize.h>
 #include <pipeline/demo_scene.h>
 #include <pipeline/quick_scene.h>
@@ -172,8 +173,7 @@ Result<DemoScene> make_demo_scene(const DemoOptions& options) {
         scene.volumes.push_back(std::move(plume_volume));
         scene.volumes_key = true;
     }
-    demo.generate_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    demo.generate_ms = ms_since(start);
     return demo;
 #else
     (void)options;

@@ -9,7 +9,7 @@
 #include <core/result.h>
 #include <mesh/tet_mesh.h>
 #include <mesh/unstructured_mesh.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 #include <cstddef>
 #include <memory>

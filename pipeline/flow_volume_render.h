@@ -5,8 +5,8 @@
 #include <core/camera.h>
 #include <core/image.h>
 #include <flowvol/flow_volume.h>
+#include <pipeline/scene.h>
 #include <project/opaque_geometry.h>
-#include <project/scene.h>
 #include <project/segment_shader.h>
 #include <project/transfer_function.h>
 

@@ -9,7 +9,7 @@
 #include <flowvol/velocity_field.h>
 #include <mesh/face_adjacency.h>
 #include <pipeline/loaded_mesh.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 #include <project/transfer_function.h>
 
 #include <array>

@@ -1,5 +1,6 @@
 #include <core/memory_budget.h>
 #include <core/parallel.h>
+#include <core/stopwatch.h>
 #include <pipeline/layered_volume.h>
 #include <pipeline/scene_volumes.h>
 

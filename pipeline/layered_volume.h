@@ -20,8 +20,8 @@
 #include <core/image.h>
 #include <core/result.h>
 #include <pipeline/pipeline.h>
+#include <pipeline/scene.h>
 #include <project/opaque_geometry.h>
-#include <project/scene.h>
 
 #include <cstdint>
 #include <span>

@@ -1,4 +1,5 @@
 #include <core/config.h>
+#include <core/stopwatch.h>
 #include <pipeline/loaded_mesh.h>
 
 #if TETRENDER_HAS_VTK
@@ -13,11 +14,6 @@
 #include <chrono>
 
 namespace tr {
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
 
 Error with_where(Error error, const std::string& path) {
     error.where = error.where.empty() ? path : path + ": " + error.where;

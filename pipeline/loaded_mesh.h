@@ -44,9 +44,6 @@ Result<LoadedMesh> load_tet_mesh(const std::filesystem::path& path, const LoadOp
 Result<LoadedMesh> load_tet_mesh(UnstructuredMesh input, const std::string& name,
                                  const LoadOptions& options);
 
-// Milliseconds since `start` (steady clock), for the stats every stage reports.
-double ms_since(std::chrono::steady_clock::time_point start);
-
 // `error` with `path` in front of its where ("path: where" or "path").
 Error with_where(Error error, const std::string& path);
 

@@ -5,7 +5,7 @@
 
 #include <core/result.h>
 #include <pipeline/pipeline.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 #include <initializer_list>
 #include <string>

@@ -1,10 +1,11 @@
 #include <core/parallel.h>
+#include <core/stopwatch.h>
 #include <pipeline/pbvr_methods.h>
 #include <pipeline/scene_volumes.h>
 #include <project/cpu_renderer.h>
 #include <project/opaque_geometry.h>
-#include <project/pbvr_image.h>
-#include <project/pbvr_object.h>
+#include <project/pbvr/pbvr_image.h>
+#include <project/pbvr/pbvr_object.h>
 
 #include <chrono>
 

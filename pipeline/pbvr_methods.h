@@ -1,7 +1,7 @@
 #pragma once
 // The particle-based methods (particle-based paper): `pbvr-object` (object-space particles,
-// project/pbvr_object.h) and `pbvr-image` (image-space particles, project/pbvr_image.h). Both
-// draw every volume of the scene, overlapping ones fused, over the opaque geometry.
+// project/pbvr/pbvr_object.h) and `pbvr-image` (image-space particles, project/pbvr/pbvr_image.h).
+// Both draw every volume of the scene, overlapping ones fused, over the opaque geometry.
 //
 // Method keys (scene.md "Method"; docs/scene-file.md lists them):
 //   pbvr-object: repetitions (64), seed (1), subpixel_level (1: L x L sub-pixels per pixel),

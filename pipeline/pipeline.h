@@ -16,9 +16,9 @@
 #include <pipeline/flow_volume_scene.h>
 #include <pipeline/loaded_mesh.h>
 #include <pipeline/render_stats.h>
+#include <pipeline/scene.h>
 #include <pipeline/sort_preparation.h>
 #include <project/opaque_geometry.h>
-#include <project/scene.h>
 #include <project/segment_shader.h>
 #include <sort/visibility_sort.h>
 

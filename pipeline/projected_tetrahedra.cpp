@@ -1,4 +1,5 @@
 #include <core/parallel.h>
+#include <core/stopwatch.h>
 #include <pipeline/flow_volume_render.h>
 #include <pipeline/projected_tetrahedra.h>
 #include <pipeline/scene_volumes.h>

@@ -7,7 +7,7 @@
 #include <core/result.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 #include <filesystem>
 #include <string>

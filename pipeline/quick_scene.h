@@ -6,8 +6,8 @@
 #include <core/camera.h>
 #include <core/result.h>
 #include <pipeline/loaded_mesh.h>
+#include <pipeline/scene.h>
 #include <project/colormap_preset.h>
-#include <project/scene.h>
 
 #include <array>
 #include <filesystem>

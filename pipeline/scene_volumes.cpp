@@ -1,3 +1,4 @@
+#include <core/stopwatch.h>
 #include <pipeline/scene_volumes.h>
 #include <project/opaque_geometry.h>
 

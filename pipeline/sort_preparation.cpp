@@ -1,4 +1,5 @@
 #include <core/config.h>
+#include <core/stopwatch.h>
 #include <pipeline/loaded_mesh.h>
 #include <pipeline/sort_preparation.h>
 

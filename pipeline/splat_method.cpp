@@ -1,10 +1,11 @@
 #include <core/parallel.h>
+#include <core/stopwatch.h>
 #include <mesh/field.h>
 #include <pipeline/scene_volumes.h>
 #include <pipeline/splat_method.h>
-#include <project/point_spacing.h>
-#include <project/splat_renderer.h>
-#include <project/vector_splat.h>
+#include <project/splat/point_spacing.h>
+#include <project/splat/splat_renderer.h>
+#include <project/splat/vector_splat.h>
 
 #include <chrono>
 #include <cmath>

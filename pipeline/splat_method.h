@@ -1,14 +1,14 @@
 #pragma once
-// The `splat` method (texture-mapping paper, 3.1; project/splat_renderer.h): the points of the
-// scene's mesh — a regular grid's lattice, or any mesh's points — each spread by a
+// The `splat` method (texture-mapping paper, 3.1; project/splat/splat_renderer.h): the points of
+// the scene's mesh — a regular grid's lattice, or any mesh's points — each spread by a
 // reconstruction kernel and composited back to front, over the opaque geometry. One volume.
 //
 // Method keys (docs/scene-file.md): kernel ("crawfis-max", the paper's cubic, default;
 // "gaussian"), spacing (the lattice spacing h the kernel is scaled to, > 0; default: that of a
-// lattice filling the points' bounds, project/splat_renderer.h lattice_spacing, exact for a
+// lattice filling the points' bounds, project/splat/splat_renderer.h lattice_spacing, exact for a
 // regular grid with the same spacing on every axis), compositing ("per-splat", default;
-// "sheet-buffer": Westover's sheet buffer, project/splat_renderer.h). Textured vector splats
-// (the paper's 4.2, project/vector_splat.h): vectors (the name of a 3-component point array:
+// "sheet-buffer": Westover's sheet buffer, project/splat/splat_renderer.h). Textured vector splats
+// (the paper's 4.2, project/splat/vector_splat.h): vectors (the name of a 3-component point array:
 // each splat a streak-textured rectangle along its projected vector), cycle (N textures in the
 // animation's cycle, 1 to kMaxSplatCycle, default 8), frame (which of them, taken modulo N;
 // default 0); cycle and frame need vectors, vectors refuses the sheet buffer.
@@ -20,7 +20,7 @@
 #include <pipeline/method.h>
 #include <pipeline/pipeline.h>
 #include <project/opaque_geometry.h>
-#include <project/splat_renderer.h>
+#include <project/splat/splat_renderer.h>
 #include <project/transfer_function.h>
 
 #include <cstdint>

@@ -1,4 +1,5 @@
 #include <core/parallel.h>
+#include <core/stopwatch.h>
 #include <flowtex/advected_sheets.h>
 #include <flowtex/sheet_raster.h>
 #include <flowtex/spot_noise_frames.h>

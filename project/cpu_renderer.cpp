@@ -1,5 +1,6 @@
 #include <core/check.h>
 #include <core/parallel.h>
+#include <core/stopwatch.h>
 #include <project/cpu_renderer.h>
 #include <project/tet_fragments.h>
 #include <project/tet_projection.h>
@@ -215,9 +216,7 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats,
     if (stats) {
         stats->cells_drawn = bins.cells_drawn;
         stats->fragments = fragments.load();
-        stats->raster_ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
+        stats->raster_ms = ms_since(start);
     }
     return image;
 }

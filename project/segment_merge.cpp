@@ -1,4 +1,5 @@
 #include <core/parallel.h>
+#include <core/stopwatch.h>
 #include <project/segment_merge.h>
 #include <project/tet_fragments.h>
 
@@ -269,7 +270,7 @@ Image render_segment_merge(const VolumeScene& scene, SegmentMergeStats* stats,
     if (stats) {
         stats->fragments = total_fragments.load();
         stats->overlap_intervals = total_overlaps.load();
-        stats->raster_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        stats->raster_ms = ms_since(start);
     }
     return image;
 }

@@ -1,4 +1,5 @@
 #include <core/check.h>
+#include <core/stopwatch.h>
 #include <sort/order_verifier.h>
 
 #include <algorithm>
@@ -128,8 +129,7 @@ OrderCheck check_order(const TetMesh& mesh, std::span<const CellId> order,
             }
         }
     }
-    check.milliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    check.milliseconds = ms_since(start);
     return check;
 }
 

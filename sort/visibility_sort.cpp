@@ -1,4 +1,5 @@
 #include <core/check.h>
+#include <core/stopwatch.h>
 #include <sort/visibility_sort.h>
 
 #include <algorithm>
@@ -193,8 +194,7 @@ SortStats VisibilitySorter::sort(const TetMesh& mesh, const FaceAdjacency& adjac
             stats.behind_eye += behind;
         }
     }
-    stats.milliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats.milliseconds = ms_since(start);
     return stats;
 }
 

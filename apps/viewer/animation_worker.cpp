@@ -1,5 +1,6 @@
 #include <apps/viewer/animation_worker.h>
 #include <core/memory_budget.h>
+#include <core/stopwatch.h>
 #include <pipeline/loaded_mesh.h>
 
 #include <algorithm>

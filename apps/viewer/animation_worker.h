@@ -16,7 +16,7 @@
 #include <core/camera.h>
 #include <core/image.h>
 #include <pipeline/pipeline.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 #include <project/transfer_function.h>
 
 #include <condition_variable>

@@ -1,7 +1,8 @@
 #include <apps/viewer/fused_worker.h>
+#include <core/stopwatch.h>
 #include <pipeline/loaded_mesh.h>
-#include <project/pbvr_common.h>
-#include <project/pbvr_image.h>
+#include <project/pbvr/pbvr_common.h>
+#include <project/pbvr/pbvr_image.h>
 #include <project/segment_merge.h>
 #include <project/segment_shader.h>
 

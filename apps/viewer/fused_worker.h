@@ -1,7 +1,7 @@
 #pragma once
 // The viewer's fused rendering of a scene of several volumes (scene.md "Several volumes in one
 // space") in a worker thread, on the CPU, through the library as `tetrender render` draws such
-// a scene: image-space PBVR over all volumes at once (project/pbvr_image.h: their particles
+// a scene: image-space PBVR over all volumes at once (project/pbvr/pbvr_image.h: their particles
 // compete for the nearest place), a batch of repetitions at a time accumulated while the view
 // stays, and the exact fused picture (project/segment_merge.h: every pixel's segments of every
 // volume merged by depth, overlaps integrated with summed extinction and emission). Projected

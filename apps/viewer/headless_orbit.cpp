@@ -1,6 +1,7 @@
 #include <apps/cli_common.h>
 #include <apps/viewer/camera_control.h>
 #include <apps/viewer/headless_orbit.h>
+#include <core/stopwatch.h>
 #include <io/write_image.h>
 #include <pipeline/loaded_mesh.h>
 #include <pipeline/movie.h>

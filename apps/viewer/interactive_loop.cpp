@@ -1,6 +1,7 @@
 #include <apps/cli_common.h>
 #include <apps/viewer/interactive_loop.h>
 #include <apps/viewer/viewer_input.h>
+#include <core/stopwatch.h>
 #include <io/write_image.h>
 
 #define GLFW_INCLUDE_NONE

@@ -1,10 +1,10 @@
 #pragma once
-// The viewer's particle-based modes in a worker thread: the library's PBVR (project/pbvr_image.h,
-// project/pbvr_object.h) renders the requested view a batch of repetitions at a time on the CPU,
-// each batch with its own seed, and the batches are accumulated in floating point while the view
-// stays; a new request (camera, size, scalar, transfer function or method changed) restarts the
-// accumulation after the batch in progress. The window never waits for it: it shows the latest
-// accumulated picture.
+// The viewer's particle-based modes in a worker thread: the library's PBVR
+// (project/pbvr/pbvr_image.h, project/pbvr/pbvr_object.h) renders the requested view a batch of
+// repetitions at a time on the CPU, each batch with its own seed, and the batches are accumulated
+// in floating point while the view stays; a new request (camera, size, scalar, transfer function or
+// method changed) restarts the accumulation after the batch in progress. The window never waits for
+// it: it shows the latest accumulated picture.
 //
 // Splatting (ViewMethod::kSplat) runs here too: one request is one picture
 // (pipeline/splat_method.h render_splat_picture, as `tetrender render --method splat` draws it),

@@ -7,10 +7,10 @@
 
 #include <core/result.h>
 #include <pipeline/pipeline.h>
+#include <pipeline/scene.h>
 #include <pipeline/splat_method.h>
-#include <project/pbvr_image.h>
-#include <project/pbvr_object.h>
-#include <project/scene.h>
+#include <project/pbvr/pbvr_image.h>
+#include <project/pbvr/pbvr_object.h>
 
 #include <cstddef>
 #include <cstdint>

@@ -1,4 +1,5 @@
 #include <apps/viewer/viewer_flow.h>
+#include <core/stopwatch.h>
 #include <project/cpu_renderer.h>
 
 #include <chrono>

@@ -5,7 +5,7 @@
 #include <core/result.h>
 #include <flowvol/flow_volume.h>
 #include <pipeline/flow_volume_scene.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 #include <array>
 #include <condition_variable>

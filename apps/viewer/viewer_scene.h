@@ -12,7 +12,7 @@
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_file_scene.h>
 #include <pipeline/quick_scene.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 #include <project/transfer_function.h>
 
 #include <memory>

@@ -1,4 +1,5 @@
 #include <apps/viewer/volume_view.h>
+#include <core/stopwatch.h>
 
 #include <utility>
 
@@ -252,8 +253,7 @@ AnimationFrames VolumeView::draw_animation(const Camera& camera, int width, int 
         shown = frame % total;
         if (shown >= arrived) return frames;  // the render failed before it
     } else {
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+        const double seconds = seconds_since(started_);
         shown = static_cast<int>(static_cast<std::int64_t>(seconds * kAnimationFps) % arrived);
     }
     if (frames.request_id != animation_shown_id_ || shown != animation_shown_frame_) {
@@ -300,8 +300,7 @@ bool VolumeView::draw(const Camera& camera, int width, int height) {
         // Vector splats play their texture cycle: the frame follows the clock (the loop looks
         // at least every 0.1 s).
         if (splat_cycle()) {
-            const double seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+            const double seconds = seconds_since(started_);
             splat_frame_ = static_cast<std::int64_t>(seconds * kSplatCycleFps);
         }
         // The worker's next batch wakes the window loop (set_wake).

@@ -1,4 +1,5 @@
 #include <core/parallel.h>
+#include <core/stopwatch.h>
 #include <distributed/box_cut.h>
 #include <distributed/detail/collectives.h>
 #include <distributed/detail/guarded.h>

@@ -8,7 +8,7 @@
 #include <distributed/mpi_world.h>
 #include <mesh/tet_mesh.h>
 #include <pipeline/loaded_mesh.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 #include <cstdint>
 #include <memory>

@@ -1,3 +1,4 @@
+#include <core/stopwatch.h>
 #include <mesh/copyleft/convexify.h>
 #include <mesh/copyleft/detail/tetgen_plc.h>
 
@@ -198,8 +199,7 @@ Result<ConvexifyReport> convexify(TetMesh& mesh, const FaceAdjacency& adjacency,
         result = make_error(ErrorCode::kInternal, "out of memory in convexification");
     }
     if (result.ok()) {
-        result->seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        result->seconds = seconds_since(start);
     }
     return result;
 }

@@ -1,4 +1,5 @@
 // The only translation unit that includes CGAL (slow to compile: keep it alone).
+#include <core/stopwatch.h>
 #include <mesh/copyleft/delaunay.h>
 #include <mesh/tetrahedralize.h>
 
@@ -148,7 +149,7 @@ Result<TetMesh> delaunay_tetrahedralize(const UnstructuredMesh& cloud, DelaunayR
         result = make_error(ErrorCode::kInternal,
                             "CGAL failed in the Delaunay tetrahedralization (unknown exception)");
     }
-    local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    local.seconds = seconds_since(start);
     if (report) *report = local;
     return result;
 }

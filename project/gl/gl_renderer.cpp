@@ -1,5 +1,6 @@
 // Projected tetrahedra with OpenGL 3.3 core: the GL half of a frame (buffers, textures,
 // framebuffers, draws); the CPU half is detail/cell_stream.cpp, the GLSL is in shaders/.
+#include <core/stopwatch.h>
 #include <project/gl/detail/cell_stream.h>
 #include <project/gl/detail/gl_program.h>
 #include <project/gl/gl_renderer.h>
@@ -22,11 +23,6 @@ using detail::kVerticesPerCell;
 
 constexpr int kTfSize = 4096;          // texels of the 1D colour + extinction table
 constexpr float kNoSurface = 3.0e38f;  // ray parameter where no opaque surface is
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
-}
 
 }  // namespace
 

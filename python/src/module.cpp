@@ -141,7 +141,7 @@ MeshHandle mesh_from_arrays(const DoubleArray& points, const Int64Array& connect
     return {std::make_shared<const tr::UnstructuredMesh>(std::move(mesh))};
 }
 
-// A scene (project/scene.h) with the pipeline that renders it, keeping what it loaded between
+// A scene (pipeline/scene.h) with the pipeline that renders it, keeping what it loaded between
 // renders. One render at a time (the mutex), the GIL released meanwhile.
 struct SceneHandle {
     tr::Scene scene;
@@ -488,7 +488,7 @@ PYBIND11_MODULE(_core, m) {
             [](const SceneHandle& s, const std::string& path) {
                 unwrap(tr::write_scene(s.scene, path));
             },
-            py::arg("path"), "project/scene.h write_scene")
+            py::arg("path"), "pipeline/scene.h write_scene")
         .def(
             "render",
             [](SceneHandle& s, const std::string& method, const std::string& sort,
@@ -664,7 +664,7 @@ PYBIND11_MODULE(_core, m) {
             s.scene = unwrap(tr::read_scene(path));
             return s;
         },
-        py::arg("path"), "project/scene.h read_scene");
+        py::arg("path"), "pipeline/scene.h read_scene");
 
     m.def(
         "parse_scene",
@@ -673,7 +673,7 @@ PYBIND11_MODULE(_core, m) {
             s.scene = unwrap(tr::parse_scene(text, base_dir, name));
             return s;
         },
-        py::arg("text"), py::arg("base_dir"), py::arg("name"), "project/scene.h parse_scene");
+        py::arg("text"), py::arg("base_dir"), py::arg("name"), "pipeline/scene.h parse_scene");
 
     m.def(
         "quick_scene",

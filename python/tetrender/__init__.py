@@ -395,7 +395,7 @@ class Scene:
     """A scene: meshes, arrays, transfer functions, camera, image (../shared/spec/scene.md).
 
     Made from a dict, a JSON string (starting with ``{``) or a scene file's path, and parsed
-    by the library's own scene reader (project/scene.h), so every check and error is the
+    by the library's own scene reader (pipeline/scene.h), so every check and error is the
     CLI's. In a dict, a volume's ``"mesh"`` may be a Mesh, a ``meshio.Mesh`` or a PyVista-shaped
     grid instead of a path; paths are relative to ``base_dir`` (default: the scene file's
     folder, else the working directory).

@@ -3,7 +3,7 @@
 // scene, a top view, and texture-advection's keys.
 
 #include <mesh/field.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 #include <tests/flowtex/fixtures.h>
 
 #include <cstdlib>

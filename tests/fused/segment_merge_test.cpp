@@ -206,7 +206,7 @@ TEST(SegmentMerge, AskingForAlphaChangesNoBitOfThePicture) {
 }  // namespace
 }  // namespace tr
 
-#include <project/pbvr_image.h>
+#include <project/pbvr/pbvr_image.h>
 
 namespace tr {
 namespace {

@@ -5,7 +5,7 @@
 // composes the picture over anything behind from the one over black, and is the known opacity
 // with the control variate, the fraction of repetitions with a particle without.
 #include <core/parallel.h>
-#include <project/pbvr_image.h>
+#include <project/pbvr/pbvr_image.h>
 #include <project/reference_raycaster.h>
 #include <tests/pbvr/pbvr_alpha_scene.h>
 #include <tests/pbvr/pbvr_test_scenes.h>

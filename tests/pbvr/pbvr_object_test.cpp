@@ -4,7 +4,7 @@
 // picture whatever the thread count; the alpha it gives, the fraction of sub-pixels with a
 // particle, composes the picture over anything behind from the one over black.
 #include <core/parallel.h>
-#include <project/pbvr_object.h>
+#include <project/pbvr/pbvr_object.h>
 #include <project/reference_raycaster.h>
 #include <tests/pbvr/pbvr_alpha_scene.h>
 #include <tests/pbvr/pbvr_test_scenes.h>

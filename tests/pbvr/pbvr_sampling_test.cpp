@@ -2,7 +2,7 @@
 // finds the points below a probability without visiting the others; the inverse-CDF depth follows
 // the exact distribution of the first particle (Kolmogorov-Smirnov against a quadrature of the
 // extinction that shares no code with the closed form).
-#include <project/pbvr_sampling.h>
+#include <project/pbvr/pbvr_sampling.h>
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Inputs the fuzz targets found (fuzz/, docs/fuzzing.md), each pinned: the scene and colour-map
 // preset parsers must return a one-line error, never throw.
+#include <pipeline/scene.h>
 #include <project/colormap_preset.h>
-#include <project/scene.h>
 
 #include <gtest/gtest.h>
 

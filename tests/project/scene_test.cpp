@@ -1,6 +1,7 @@
 // Scene files as ../shared/spec/scene.md fixes them, and the transfer function.
+#include <pipeline/scene.h>
 #include <project/colormap.h>
-#include <project/scene.h>
+#include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 
@@ -33,13 +34,6 @@ const char* kScene = R"({
 })";
 
 Result<Scene> parse(const std::string& text) { return parse_scene(text, "/base", "s.json"); }
-
-// A fresh folder of this process's own (build trees run these tests at the same time).
-std::filesystem::path unique_temp_dir() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "tetrender_scene_XXXXXX");
-    EXPECT_NE(mkdtemp(pattern.data()), nullptr);
-    return pattern;
-}
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {
     const auto pos = text.find(from);
@@ -167,10 +161,10 @@ TEST(Scene, FlowVolumeExtension) {
     EXPECT_EQ(f.start_time, 0.5);
     EXPECT_EQ(f.unit_distance, 0.1);
     // Written and read back: the same values.
-    const auto dir = unique_temp_dir();
+    const testing::TempDir temp("tetrender_scene_");
+    const std::filesystem::path& dir = temp.path();
     ASSERT_TRUE(write_scene(*scene, dir / "fv.json").ok());
     auto back = read_scene(dir / "fv.json");
-    std::filesystem::remove_all(dir);
     ASSERT_TRUE(back.ok()) << back.error().to_string();
     ASSERT_TRUE(back->flow_volume.has_value());
     EXPECT_EQ(back->flow_volume->seed_normal, f.seed_normal);
@@ -198,7 +192,8 @@ TEST(Scene, FlowVolumeExtension) {
 TEST(Scene, WriteThenReadGivesTheSameScene) {
     auto scene = parse(kScene);
     ASSERT_TRUE(scene.ok());
-    const auto dir = unique_temp_dir();
+    const testing::TempDir temp("tetrender_scene_");
+    const std::filesystem::path& dir = temp.path();
     scene->volumes[0].mesh = dir / "meshes" / "m.vtu";
     const auto path = dir / "out.scene.json";
     ASSERT_TRUE(write_scene(*scene, path).ok());
@@ -211,7 +206,6 @@ TEST(Scene, WriteThenReadGivesTheSameScene) {
     EXPECT_EQ(back->camera.position, scene->camera.position);
     EXPECT_EQ(back->volumes[0].transfer_function.opacity_points().size(), 3u);
     EXPECT_FALSE(back->method.has_value());
-    std::filesystem::remove_all(dir);
 }
 
 TEST(Scene, ReadsTheVtkHarnessExamples) {
@@ -263,10 +257,10 @@ TEST(Scene, VolumesAndMethod) {
     ASSERT_EQ(scene->method->options.size(), 1u);
     EXPECT_EQ(std::get<std::string>(scene->method->options.at("depth")), "entry");
     // Written and read back: the same volumes and method.
-    const auto dir = unique_temp_dir();
+    const testing::TempDir temp("tetrender_scene_");
+    const std::filesystem::path& dir = temp.path();
     ASSERT_TRUE(write_scene(*scene, dir / "v.json").ok());
     auto back = read_scene(dir / "v.json");
-    std::filesystem::remove_all(dir);
     ASSERT_TRUE(back.ok()) << back.error().to_string();
     ASSERT_EQ(back->volumes.size(), 2u);
     EXPECT_EQ(back->volumes[1].time_step, 3);

@@ -1,9 +1,9 @@
-// The local spacing of scattered points (project/point_spacing.h): the k-d tree search against a
-// brute-force one, a lattice's spacing exactly, a random cloud's density, and what it is for:
-// splats of a cloud of two densities give both halves the optical depth of a constant field,
+// The local spacing of scattered points (project/splat/point_spacing.h): the k-d tree search
+// against a brute-force one, a lattice's spacing exactly, a random cloud's density, and what it is
+// for: splats of a cloud of two densities give both halves the optical depth of a constant field,
 // where one global spacing makes the dense half eight times as deep.
-#include <project/point_spacing.h>
-#include <project/splat_renderer.h>
+#include <project/splat/point_spacing.h>
+#include <project/splat/splat_renderer.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
 
 #include <gtest/gtest.h>

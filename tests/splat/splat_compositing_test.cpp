@@ -1,9 +1,9 @@
-// The two compositings of splats (project/splat_renderer.h: per splat, the paper's, and Westover's
-// sheet buffer): popping during a rotation — the largest change of a pixel between views 0.5
-// degrees apart, across the view directions where the per-splat order of the lattice's points
+// The two compositings of splats (project/splat/splat_renderer.h: per splat, the paper's, and
+// Westover's sheet buffer): popping during a rotation — the largest change of a pixel between views
+// 0.5 degrees apart, across the view directions where the per-splat order of the lattice's points
 // flips — and both against the exact integral of a smooth field on a 64^3 lattice.
 #include <project/reference_raycaster.h>
-#include <project/splat_renderer.h>
+#include <project/splat/splat_renderer.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/splat/splat_inputs.h>
 

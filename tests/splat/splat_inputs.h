@@ -2,7 +2,7 @@
 // The splat renderer's inputs for a lattice the tests draw: its points and scalar, spacing,
 // transfer function, footprint, camera and compositing (the rest defaulted). The referenced
 // objects must outlive the inputs.
-#include <project/splat_renderer.h>
+#include <project/splat/splat_renderer.h>
 
 #include <span>
 

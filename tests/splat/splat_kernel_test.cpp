@@ -2,7 +2,7 @@
 // published (continuous, zero at its support, integral 1), the lattice sum of equation 7 measured
 // by brute force over random points against the paper's "deviates from 1.0 by only 0.25%", and
 // the footprint table against direct quadrature and the Gaussian's closed form.
-#include <project/splat_kernel.h>
+#include <project/splat/splat_kernel.h>
 
 #include <gtest/gtest.h>
 

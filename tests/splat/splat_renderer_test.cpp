@@ -3,7 +3,7 @@
 // field comes within a measured PSNR of the exact ray integral of the same lattice's linear tets
 // (the reference ray caster), for both kernels; opaque geometry hides what lies behind it.
 #include <project/reference_raycaster.h>
-#include <project/splat_renderer.h>
+#include <project/splat/splat_renderer.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
 
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
-// Footprint stamps (project/splat_stamps.h): blended at any sub-pixel position of a splat's
+// Footprint stamps (project/splat/splat_stamps.h): blended at any sub-pixel position of a splat's
 // centre they give the footprint to a stated fraction of its peak, at every scale and for both
 // kernels; a lattice drawn from stamps is the picture drawn by the footprint's table (the
 // per-point radius path) to a stated difference.
-#include <project/splat_renderer.h>
-#include <project/splat_stamps.h>
+#include <project/splat/splat_renderer.h>
+#include <project/splat/splat_stamps.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/splat/splat_inputs.h>
 

@@ -1,9 +1,9 @@
-// Textured vector splats (project/vector_splat.h): an isolated splat's streak points along the
-// projected vector (its image moments' principal axis, against the direction got by projecting
+// Textured vector splats (project/splat/vector_splat.h): an isolated splat's streak points along
+// the projected vector (its image moments' principal axis, against the direction got by projecting
 // two world points), brighter toward the motion, its head moving forward from frame to frame;
 // the cycle closes (frame k + N is frame k) and its frames differ.
-#include <project/splat_renderer.h>
-#include <project/vector_splat.h>
+#include <project/splat/splat_renderer.h>
+#include <project/splat/vector_splat.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
 
 #include <gtest/gtest.h>

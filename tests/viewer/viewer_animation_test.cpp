@@ -3,8 +3,9 @@
 // byte (both are the library's render of the scene), so that the frames loop in the window as
 // the CLI writes them; the animation worker starts over for a new view; bad input is one line.
 #include <apps/viewer/animation_worker.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 #include <tests/apps/cli_runner.h>
+#include <tests/support/temp_dir.h>
 #include <tests/viewer/viewer_runner.h>
 
 #include <gtest/gtest.h>
@@ -77,7 +78,8 @@ std::string frame_file(const std::string& folder, int k) {
 
 TEST(ViewerAnimation, HeadlessFrameIIsTheRendersFrameIModStepsPlusOne) {
     if (!require_xvfb()) GTEST_SKIP() << "no xvfb-run";
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     for (const auto& [name, method] :
          {std::pair{"texture-advection", kTextureAdvection}, std::pair{"spot-noise", kSpotNoise}}) {
         SCOPED_TRACE(name);
@@ -103,13 +105,13 @@ TEST(ViewerAnimation, HeadlessFrameIIsTheRendersFrameIModStepsPlusOne) {
         EXPECT_EQ(last.width, 96);
         EXPECT_EQ(last.height, 64);
     }
-    std::filesystem::remove_all(dir);
 }
 
 // The worker alone (no GL): the frames of one request arrive in order, all steps + 1 of them,
 // each the library's render of that frame; a new view starts the frames over.
 TEST(ViewerAnimation, TheWorkerHandsOverEveryFrameAndStartsOverForANewView) {
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     auto scene = read_scene(write_scene(dir, "advect", kTextureAdvection));
     ASSERT_TRUE(scene.ok()) << scene.error().to_string();
     Pipeline pipeline;
@@ -151,12 +153,12 @@ TEST(ViewerAnimation, TheWorkerHandsOverEveryFrameAndStartsOverForANewView) {
     EXPECT_EQ(other.request_id, third);
     ASSERT_GE(other.frames.size(), 1u);
     EXPECT_NE(other.frames[0]->pixels, expected[0].pixels);
-    std::filesystem::remove_all(dir);
 }
 
 TEST(ViewerAnimationBadInput, OneLineNoPicture) {
     if (!require_xvfb()) GTEST_SKIP() << "no xvfb-run";
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string mesh = shell_quote(write_lattice(dir));
     const std::string shot = dir + "/x.png";
     // A mesh file has no method keys: texture-advection needs `vectors`, spot-noise `iso` too.
@@ -179,7 +181,6 @@ TEST(ViewerAnimationBadInput, OneLineNoPicture) {
         << run.err;
     EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
     EXPECT_FALSE(std::filesystem::exists(shot));
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -8,8 +8,8 @@
 #include <apps/viewer/viewer_scene.h>
 #include <io/write_vtu.h>
 #include <mesh/point_data.h>
+#include <pipeline/scene.h>
 #include <project/opaque_geometry.h>
-#include <project/scene.h>
 #include <project/segment_merge.h>
 #include <project/segment_shader.h>
 #include <tests/apps/cli_runner.h>

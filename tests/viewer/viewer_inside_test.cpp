@@ -6,12 +6,13 @@
 #include <io/write_image.h>
 #include <io/write_vtu.h>
 #include <mesh/point_data.h>
+#include <pipeline/scene.h>
 #include <project/cpu_renderer.h>
 #include <project/opaque_geometry.h>
-#include <project/scene.h>
 #include <sort/visibility_sort.h>
 #include <tests/apps/cli_runner.h>
 #include <tests/support/image_check.h>
+#include <tests/support/temp_dir.h>
 #include <tests/viewer/viewer_fixtures.h>
 #include <tests/viewer/viewer_runner.h>
 
@@ -21,6 +22,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,7 +36,8 @@ using testing::run_viewer;
 using testing::shell_quote;
 
 struct InsideScene {
-    std::string dir, scene;
+    std::shared_ptr<const testing::TempDir> folder = std::make_shared<const testing::TempDir>();
+    std::string dir = folder->string(), scene;
 };
 
 // A cube [-1, 1]^3 of n^3 cells, each split into 6 tets around its main diagonal, with a smooth
@@ -47,7 +50,6 @@ constexpr const char* kCentreCamera =
 
 InsideScene make_inside_scene(const std::string& camera = kCentreCamera, int n = 7) {
     InsideScene t;
-    t.dir = testing::make_temp_dir();
     TetMesh mesh = testing::freudenthal_box(n, n, n, Vec3(-1.0), Vec3(1.0));
     std::vector<float> scalar;
     for (const Vec3& p : mesh.points()) {
@@ -115,7 +117,6 @@ TEST_P(InsideGlVersusCpu, CellsAroundTheEyeAreDrawn) {
                                    : ImageBounds{34.9, 0.052};  // measured 36.90 dB, 0.04122
     EXPECT_TRUE(images_match(gl, cpu, kBackground, bounds,
                              "viewer_inside_" + std::string(integrator_name(integrator))));
-    std::filesystem::remove_all(t.dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, InsideGlVersusCpu,
@@ -160,7 +161,6 @@ TEST(InsideGlVersusCpu, RandomCamerasInside) {
         };
         EXPECT_TRUE(images_match(gl, cpu, kBackground, bounds[seed - 1],
                                  "viewer_inside_random_seed" + std::to_string(seed)));
-        std::filesystem::remove_all(t.dir);
     }
 }
 

@@ -5,7 +5,7 @@
 // transfer-function edit (against a fresh generation for the new function).
 #include <apps/viewer/pbvr_worker.h>
 #include <apps/viewer/viewer_scene.h>
-#include <project/scene.h>
+#include <pipeline/scene.h>
 #include <tests/apps/cli_runner.h>
 #include <tests/support/image_check.h>
 #include <tests/viewer/viewer_fixtures.h>
@@ -82,7 +82,6 @@ TEST_P(PbvrVersusCpu, ConvergesToTheCpuPicture) {
     const ImageBounds bounds =
         method == "pbvr-image" ? ImageBounds{49.7, 0.0477} : ImageBounds{37.6, 0.120};
     EXPECT_TRUE(images_match(pbvr, cpu, kBackground, bounds, "viewer_" + method + "_vs_cpu"));
-    std::filesystem::remove_all(t.dir);
 }
 
 // The same number of repetitions accumulated in one batch or in eight (each batch its own
@@ -131,7 +130,6 @@ TEST_P(PbvrVersusCpu, OneBatchOrSeveralAreEquivalent) {
             one_and_eight(t.scene, "viewer_pbvr-image_stratified", {42.8, 0.117});
         EXPECT_GT(one_stratified, eight_stratified + 1.5);
     }
-    std::filesystem::remove_all(t.dir);
 }
 
 // An orbit's frames each restart the accumulation: the last frame (its view's 32 repetitions,
@@ -153,8 +151,11 @@ TEST_P(PbvrVersusCpu, OrbitRestartsTheAccumulation) {
     EXPECT_TRUE(images_match(orbit, direct, kBackground, {120.0, 1e-5},
                              "viewer_" + method + "_orbit_last_vs_direct"));
     const Image start = viewer_picture(t.scene, common, t.dir + "/start.pfm");
-    EXPECT_LT(foreground_psnr(orbit, start, "orbit_vs_start"), 30.0);  // measured
-    std::filesystem::remove_all(t.dir);
+    // The orbit moved the view: measured 20.65 dB (pbvr-image), 19.54 dB (pbvr-object) from the
+    // start's picture, largest differences 0.402 and 0.557; bounds the larger PSNR plus 1.5 dB,
+    // the smaller difference less a quarter.
+    EXPECT_LT(foreground_psnr(orbit, start, "orbit_vs_start"), 22.2);
+    EXPECT_GT(compare_images(orbit, start, kBackground).max_difference, 0.3);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, PbvrVersusCpu, ::testing::Values("pbvr-image", "pbvr-object"),
@@ -193,7 +194,6 @@ TEST(ViewerPbvr, SceneMethodKey) {
     run = run_viewer(shell_quote(t.scene) + " --method nope", false);
     EXPECT_EQ(run.exit_code, 2);
     EXPECT_NE(run.err.find("unknown --method 'nope'"), std::string::npos) << run.err;
-    std::filesystem::remove_all(t.dir);
 }
 
 // --- The worker alone (no GL) ---
@@ -212,7 +212,6 @@ struct WorkerScene {
         vs = std::move(loaded).value();
         scalar = std::make_shared<const std::vector<float>>(vs.scalar);
     }
-    ~WorkerScene() { std::filesystem::remove_all(files.dir); }
 
     std::unique_ptr<PbvrWorker> worker(const PbvrSettings& settings) const {
         return std::make_unique<PbvrWorker>(vs.sort.mesh(), vs.opaque.layers(), vs.longest_edge,
@@ -302,8 +301,10 @@ TEST(PbvrWorker, TransferFunctionEditRerendersKeptParticles) {
     const PbvrFrame kept = worker->wait_for(id, 128);
     EXPECT_EQ(kept.repetitions, 128);
     EXPECT_EQ(kept.reused_repetitions, 128);  // every repetition from kept particles
-    EXPECT_GT(kept.retargeted_cells, 0u);
-    EXPECT_LT(kept.retargeted_cells, kept.cells / 2);  // measured
+    // Measured: 583 of 16,464 cells regenerated per set (3.5%); bounds a quarter below and a
+    // twentieth of the cells (823) above.
+    EXPECT_GT(kept.retargeted_cells, 437u);
+    EXPECT_LT(kept.retargeted_cells, kept.cells / 20);
     std::printf("[ retarget ] %zu of %zu cells regenerated per set\n", kept.retargeted_cells,
                 kept.cells);
     auto fresh_worker = ws.worker(settings);
@@ -320,8 +321,8 @@ TEST(PbvrWorker, TransferFunctionEditRerendersKeptParticles) {
                 psnr_kept, psnr_fresh);
     EXPECT_GT(psnr_kept, psnr_fresh - 1.5);
     // The picture did change: the old function's is farther from the new CPU picture.
-    EXPECT_LT(foreground_psnr(*f.image, cpu, "old_function_vs_new_cpu"),
-              psnr_kept - 3.0);  // measured
+    // Measured 19.95 dB against the kept picture's 35.32 dB (15.4 dB apart); bound 13.5 dB apart.
+    EXPECT_LT(foreground_psnr(*f.image, cpu, "old_function_vs_new_cpu"), psnr_kept - 13.5);
 }
 
 // Kept particles hold for an orthographic rotation (the same sub-pixel size), not for a

@@ -8,12 +8,13 @@
 #include <io/write_vtu.h>
 #include <mesh/point_data.h>
 #include <pipeline/pipeline.h>
+#include <pipeline/scene.h>
 #include <project/cpu_renderer.h>
 #include <project/opaque_geometry.h>
-#include <project/scene.h>
 #include <sort/visibility_sort.h>
 #include <tests/apps/cli_runner.h>
 #include <tests/support/image_check.h>
+#include <tests/support/temp_dir.h>
 #include <tests/viewer/viewer_fixtures.h>
 #include <tests/viewer/viewer_runner.h>
 #include <tests/viewer/viewer_test_scene.h>
@@ -92,7 +93,6 @@ TEST_P(GlVersusCpu, PictureMatchesTheCpuRenderer) {
                                    : ImageBounds{68.2, 0.056};  // measured 70.25 dB, 0.04447
     EXPECT_TRUE(images_match(gl, cpu, kBackground, bounds,
                              "viewer_gl_vs_cpu_" + std::string(integrator_name(integrator))));
-    std::filesystem::remove_all(t.dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, GlVersusCpu,
@@ -145,7 +145,6 @@ TEST(Viewer, ScriptedOrbitAndTransferFunctionChange) {
                      shell_quote(viridis));
     ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_TRUE(images_differ(last, read_pfm(viridis), 17.3, "colormap"));  // measured 15.27 dB
-    std::filesystem::remove_all(t.dir);
 }
 
 TEST(Viewer, AnOrbitWritesEveryFrameAndTurnsAboutTheUpAxis) {
@@ -179,7 +178,6 @@ TEST(Viewer, AnOrbitWritesEveryFrameAndTurnsAboutTheUpAxis) {
     // --frames-dir belongs to a headless orbit.
     run = run_viewer(scene + " --frames-dir " + shell_quote(frames));
     EXPECT_NE(run.exit_code, 0);
-    std::filesystem::remove_all(t.dir);
 }
 
 // The sort worker answers each request with that view's order (a permutation of the real
@@ -219,7 +217,6 @@ TEST(SortWorker, OrdersForTheRequestedViews) {
         for (std::size_t i = 0; i < sorted.size(); ++i) ASSERT_EQ(sorted[i], i);
         last_seen = id;
     }
-    std::filesystem::remove_all(t.dir);
 }
 
 // The interactive path: a visible window, the ImGui panel, the sort worker, a few frames.
@@ -229,7 +226,6 @@ TEST(Viewer, InteractiveWindowRunsFrames) {
     const auto run = run_viewer(shell_quote(t.scene) + " --exit-after-frames 5 --size 640x400");
     EXPECT_EQ(run.exit_code, 0) << run.err;
     EXPECT_NE(run.out.find("left drag rotate"), std::string::npos) << run.out;
-    std::filesystem::remove_all(t.dir);
 }
 
 TEST(Viewer, NoDisplaySaysSo) {
@@ -241,7 +237,6 @@ TEST(Viewer, NoDisplaySaysSo) {
     EXPECT_NE(run.err.find("no display: run under xvfb-run or set DISPLAY"), std::string::npos)
         << run.err;
     EXPECT_FALSE(std::filesystem::exists(out));
-    std::filesystem::remove_all(t.dir);
 }
 
 TEST(Viewer, NoOpenGl33CoreSaysSo) {
@@ -254,7 +249,6 @@ TEST(Viewer, NoOpenGl33CoreSaysSo) {
     EXPECT_NE(run.err.find("no OpenGL 3.3 core context"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find("the display offers OpenGL 3.0"), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(out));
-    std::filesystem::remove_all(t.dir);
 }
 
 // A mesh opened in the viewer is the quick look `tetrender render` makes, with the same
@@ -296,11 +290,11 @@ TEST(Viewer, AMeshIsTheQuickLookOfRenderWithItsOptions) {
         shell_quote(t.scene) + " --range 0,1 --screenshot " + shell_quote(t.dir + "/x.pfm"), false);
     EXPECT_EQ(refused.exit_code, 2);
     EXPECT_NE(refused.err.find("--range is for a mesh file"), std::string::npos) << refused.err;
-    std::filesystem::remove_all(t.dir);
 }
 
 TEST(Viewer, BadFilesAndCommandLines) {
-    const std::string dir = testing::make_temp_dir();
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
     const std::string out = dir + "/x.png";
     // A missing mesh: exit 1, one line naming the file.
     auto run =
@@ -332,8 +326,6 @@ TEST(Viewer, BadFilesAndCommandLines) {
     EXPECT_EQ(run.exit_code, 0);
     EXPECT_NE(run.out.find("--screenshot"), std::string::npos);
     EXPECT_NE(run.out.find("r reset"), std::string::npos);
-    std::filesystem::remove_all(dir);
-    std::filesystem::remove_all(t.dir);
 }
 
 TEST(Viewer, UnwritableScreenshotLeavesNoFile) {
@@ -344,7 +336,6 @@ TEST(Viewer, UnwritableScreenshotLeavesNoFile) {
     EXPECT_EQ(run.exit_code, 1);
     EXPECT_NE(run.err.find("x.png"), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(out));
-    std::filesystem::remove_all(t.dir);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #include <core/fast_exp.h>
 #include <core/vector_clones.h>
-#include <project/splat_rows.h>
+#include <project/splat/splat_rows.h>
 
 #include <algorithm>
 

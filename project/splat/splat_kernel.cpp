@@ -1,4 +1,4 @@
-#include <project/splat_kernel.h>
+#include <project/splat/splat_kernel.h>
 
 #include <cmath>
 #include <numbers>

@@ -26,7 +26,7 @@
 // Each repetition draws new particles (independent repetitions: the error falls as R^-1/2).
 // Particles nearer than the near limit (perspective) or beyond opaque geometry are dropped.
 
-#include <project/pbvr_common.h>
+#include <project/pbvr/pbvr_common.h>
 #include <project/transfer_function.h>
 
 #include <cstdint>

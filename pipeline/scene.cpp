@@ -1,4 +1,4 @@
-#include <project/scene.h>
+#include <pipeline/scene.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,5 +1,6 @@
 #include <core/parallel.h>
-#include <project/pbvr_image.h>
+#include <core/stopwatch.h>
+#include <project/pbvr/pbvr_image.h>
 #include <project/tet_fragments.h>
 
 #include <algorithm>
@@ -312,7 +313,7 @@ Image render_image_pbvr(const VolumeScene& scene, const ImagePbvrOptions& option
     if (stats) {
         stats->fragments = total_fragments.load();
         stats->particles = total_particles.load();
-        stats->raster_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        stats->raster_ms = ms_since(start);
     }
     return image;
 }

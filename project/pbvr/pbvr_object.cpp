@@ -1,6 +1,7 @@
 #include <core/parallel.h>
-#include <project/pbvr_object.h>
-#include <project/pbvr_sampling.h>
+#include <core/stopwatch.h>
+#include <project/pbvr/pbvr_object.h>
+#include <project/pbvr/pbvr_sampling.h>
 
 #include <algorithm>
 #include <atomic>
@@ -12,10 +13,6 @@ namespace tr {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 constexpr std::size_t kCellsPerChunk = 2048;
 

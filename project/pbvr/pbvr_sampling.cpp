@@ -1,4 +1,4 @@
-#include <project/pbvr_sampling.h>
+#include <project/pbvr/pbvr_sampling.h>
 
 #include <algorithm>
 #include <cmath>

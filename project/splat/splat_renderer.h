@@ -2,8 +2,8 @@
 // Splatting (texture-mapping paper, 3.1): a field given at points — the lattice points of a
 // regular grid, or the points of any mesh — rendered without cells. Each point's value is
 // classified by the transfer function (extinction kappa and colour c), and spread by the
-// reconstruction kernel of project/splat_kernel.h scaled to the point spacing h: along a pixel
-// ray passing at distance rho from the point, the point adds the optical depth
+// reconstruction kernel of project/splat/splat_kernel.h scaled to the point spacing h: along a
+// pixel ray passing at distance rho from the point, the point adds the optical depth
 //     tau = kappa h f(rho / h)
 // (f the kernel's footprint, its line integral in lattice units), so a constant field's optical
 // depth along any ray is kappa times the length times the kernel's lattice sum (within 0.53% of 1
@@ -31,14 +31,15 @@
 //
 // The raster: the picture in tiles of 32^2 pixels, drawn concurrently, each tile's splats in the
 // order above. Orthographic splats of one scale (a lattice's: no per-point radius) are drawn from
-// footprint stamps (project/splat_stamps.h: within 2.3e-4 of the footprint's peak) by the
-// vectorised row loops of project/splat_rows.h; other orthographic splats read the footprint's
-// table per pixel by rho^2, perspective ones too, rho the distance from each pixel's ray (row by
-// row, project/splat_rows.h's perspective_depths; with opaque geometry pixel by pixel).
+// footprint stamps (project/splat/splat_stamps.h: within 2.3e-4 of the footprint's peak) by the
+// vectorised row loops of project/splat/splat_rows.h; other orthographic splats read the
+// footprint's table per pixel by rho^2, perspective ones too, rho the distance from each pixel's
+// ray (row by row, project/splat/splat_rows.h's perspective_depths; with opaque geometry pixel by
+// pixel).
 
 #include <core/camera.h>
 #include <core/image.h>
-#include <project/splat_kernel.h>
+#include <project/splat/splat_kernel.h>
 #include <project/transfer_function.h>
 
 #include <cstddef>

@@ -19,7 +19,7 @@
 // 2.3e-4 of the footprint's peak from 1 to 30 pixels per kernel unit (a sixteenth of an 8-bit
 // level).
 
-#include <project/splat_kernel.h>
+#include <project/splat/splat_kernel.h>
 
 #include <vector>
 

@@ -1,5 +1,5 @@
 #include <core/parallel.h>
-#include <project/point_spacing.h>
+#include <project/splat/point_spacing.h>
 
 #include <algorithm>
 #include <cmath>

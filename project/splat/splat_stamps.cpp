@@ -1,5 +1,5 @@
 #include <core/check.h>
-#include <project/splat_stamps.h>
+#include <project/splat/splat_stamps.h>
 
 #include <algorithm>
 #include <cmath>

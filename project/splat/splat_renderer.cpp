@@ -1,8 +1,9 @@
 #include <core/check.h>
 #include <core/parallel.h>
-#include <project/splat_renderer.h>
-#include <project/splat_rows.h>
-#include <project/splat_stamps.h>
+#include <core/stopwatch.h>
+#include <project/splat/splat_renderer.h>
+#include <project/splat/splat_rows.h>
+#include <project/splat/splat_stamps.h>
 
 #include <algorithm>
 #include <atomic>
@@ -525,7 +526,7 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
             const double kernel_h = s.h, reach_sq = support_sq * kernel_h * kernel_h;
             const Vec3 v = in.points[s.point] - camera.eye();
             if (!opaque) {
-                // Row by row, vectorised (project/splat_rows.h).
+                // Row by row, vectorised (project/splat/splat_rows.h).
                 float tau[kTile];
                 for (int y = ya; y <= yb; ++y) {
                     const int k = (y - y0) * kTile + (xa - x0), n = xb - xa + 1;
@@ -574,9 +575,7 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
         stats->fragments = fragments.load();
         stats->sheet_axis = axis;
         stats->sheets = sheet_count;
-        stats->raster_ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
+        stats->raster_ms = ms_since(start);
     }
     return image;
 }

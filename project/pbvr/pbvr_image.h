@@ -11,7 +11,7 @@
 // the nearest place.
 //
 // Beyond the paper — stratified repetitions: the R repetitions of one segment on one pixel take
-// the R points of a randomly rotated lattice (project/pbvr_sampling.h) instead of independent
+// the R points of a randomly rotated lattice (project/pbvr/pbvr_sampling.h) instead of independent
 // numbers, the same number deciding presence (u < alpha) and depth (the CDF at u / alpha). Each
 // repetition alone is exactly distributed (every segment's rotation is independent, so the
 // estimator stays unbiased), while over the R repetitions each segment holds a particle in
@@ -36,8 +36,8 @@
 // mean colour the particles bring, the less noise is left (none for a uniform colour).
 // `control_variate = false` gives the plain mean.
 
-#include <project/pbvr_common.h>
-#include <project/pbvr_sampling.h>
+#include <project/pbvr/pbvr_common.h>
+#include <project/pbvr/pbvr_sampling.h>
 
 #include <cstdint>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
-// The splat raster's inner loops (project/splat_renderer.cpp), one row of pixels at a time over
-// planar float buffers: each a straight loop the compiler vectorises (but perspective_depths),
+// The splat raster's inner loops (project/splat/splat_renderer.cpp), one row of pixels at a time
+// over planar float buffers: each a straight loop the compiler vectorises (but perspective_depths),
 // built twice on x86-64 (AVX2 and the baseline, chosen when the program loads: target_clones). The
 // arithmetic is the same in both (no fused multiply-add: ISO C++ mode), so are the pictures.
 //

@@ -1,6 +1,7 @@
 #include <core/check.h>
 #include <core/parallel.h>
-#include <project/vector_splat.h>
+#include <core/stopwatch.h>
+#include <project/splat/vector_splat.h>
 
 #include <algorithm>
 #include <atomic>
@@ -229,9 +230,7 @@ Image render_vector_splats(const VectorSplatInputs& in, VectorSplatStats* stats)
         stats->splats_drawn = rects.size();
         stats->fragments = fragments.load();
         stats->fastest = fastest;
-        stats->raster_ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
+        stats->raster_ms = ms_since(start);
     }
     return image;
 }
