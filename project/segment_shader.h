@@ -56,7 +56,7 @@ namespace tr {
 enum class Integrator { kExpTexture, kPreintegrated, kExact };
 
 namespace detail {
-struct Preintegration;  // kPreintegrated's tables (segment_shader.cpp)
+struct Preintegration;  // kPreintegrated's tables (project/detail/preintegration.h)
 struct LazyPreintTable;
 }  // namespace detail
 
