@@ -180,10 +180,8 @@ py::dict stats_dict(const tr::NamedStats& stats) {
     return out;
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_core, m) {
-    m.doc() = "tetrender's C++ core; use the tetrender package, not this module.";
+// The library's errors, raised as tetrender.Error.
+void bind_errors(py::module_& m) {
     static py::exception<LibraryError> error(m, "Error", PyExc_RuntimeError);
     py::register_exception_translator([](std::exception_ptr p) {
         try {
@@ -192,7 +190,10 @@ PYBIND11_MODULE(_core, m) {
             error(e.what());
         }
     });
+}
 
+// Meshes held by the library, shared with numpy views.
+void bind_mesh_handles(py::module_& m) {
     py::class_<MeshHandle>(m, "MeshHandle", "A mesh held by the library (shared with numpy views).")
         .def_property_readonly(
             "points",
@@ -299,7 +300,10 @@ PYBIND11_MODULE(_core, m) {
                 return r;
             },
             "what the split did (mesh/tetrahedralize.h TetrahedralizeReport)");
+}
 
+// Spot noise and texture advection (flowtex/).
+void bind_flow_textures(py::module_& m) {
     // Spot noise and texture advection (flowtex/): the frames of an in-memory tet mesh's
     // steady flow, as `tetrender spotnoise` and `tetrender advect` write them.
     const auto flow_frames = [](const TetHandle& mesh, const std::string& name,
@@ -399,6 +403,10 @@ PYBIND11_MODULE(_core, m) {
         py::arg("mesh"), py::arg("name"), py::arg("vectors"), py::arg("point"), py::arg("normal"),
         py::arg("steps"), py::arg("dt"), py::arg("resolution"), py::arg("method"), py::arg("width"),
         py::arg("height"), py::arg("as_float"), "flowtex/advect_frames.h advect_frames");
+}
+
+// The memory budget, meshes from arrays and files, the split into tets.
+void bind_memory_and_meshes(py::module_& m) {
     m.def(
         "set_max_memory", [](std::uint64_t bytes) { tr::set_memory_budget(bytes); },
         py::arg("bytes"), "core/memory_budget.h set_memory_budget (0: the default)");
@@ -441,8 +449,11 @@ PYBIND11_MODULE(_core, m) {
         },
         py::arg("mesh"), py::arg("merge_tolerance") = 0.0, py::arg("merge_points") = true,
         "mesh/tetrahedralize.h tetrahedralize");
+}
 
-    py::class_<SceneHandle>(m, "SceneHandle", "A scene and the pipeline that renders it.")
+// A scene's contents: its volumes' meshes, the view, the scene file.
+void bind_scene_contents(py::class_<SceneHandle>& scene) {
+    scene
         .def_property_readonly("num_volumes",
                                [](const SceneHandle& s) { return s.scene.volumes.size(); })
         .def_property_readonly("width", [](const SceneHandle& s) { return s.scene.width; })
@@ -488,7 +499,12 @@ PYBIND11_MODULE(_core, m) {
             [](const SceneHandle& s, const std::string& path) {
                 unwrap(tr::write_scene(s.scene, path));
             },
-            py::arg("path"), "pipeline/scene.h write_scene")
+            py::arg("path"), "pipeline/scene.h write_scene");
+}
+
+// Rendering a scene: the picture, the visibility order and its check, the loaded tets.
+void bind_scene_rendering(py::class_<SceneHandle>& scene) {
+    scene
         .def(
             "render",
             [](SceneHandle& s, const std::string& method, const std::string& sort,
@@ -624,7 +640,10 @@ PYBIND11_MODULE(_core, m) {
                                  loaded->report};
             },
             py::arg("volume"), "The volume's mesh as the pipeline loaded it (tetrahedral).");
+}
 
+// Pictures and scene files, and the quick-look scene of a mesh.
+void bind_images_and_scene_files(py::module_& m) {
     m.def(
         "write_image",
         [](const py::array& array, const std::string& path) {
@@ -717,4 +736,18 @@ PYBIND11_MODULE(_core, m) {
         py::arg("elevation") = 0.0, py::arg("zoom") = 1.0, py::arg("background") = std::nullopt,
         py::arg("log") = false,
         "pipeline/quick_scene.h make_quick_scene: the CLI's quick-look scene of a mesh");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+    m.doc() = "tetrender's C++ core; use the tetrender package, not this module.";
+    bind_errors(m);
+    bind_mesh_handles(m);
+    bind_flow_textures(m);
+    bind_memory_and_meshes(m);
+    py::class_<SceneHandle> scene(m, "SceneHandle", "A scene and the pipeline that renders it.");
+    bind_scene_contents(scene);
+    bind_scene_rendering(scene);
+    bind_images_and_scene_files(m);
 }
