@@ -171,17 +171,9 @@ int render_frames(const RenderArgs& args, const Scene& scene, const Picture& pic
     return kExitOk;
 }
 
-int run_render(const RenderArgs& args) {
-    RenderOptions options;
-    if (auto sort = sort_method_named(args.sort); sort.ok()) {
-        options.sort = *sort;
-    } else {
-        return report_usage(sort.error());
-    }
-    if (const Status set = set_integrator_option(options, args.integrator); !set.ok()) {
-        return report_usage(set.error());
-    }
-    const bool scene_mode = is_scene_file(args.input);
+// The command line's combinations that cannot work, refused before any work: the exit code of
+// the refusal (its message printed), or none.
+std::optional<int> refuse_render_args(const RenderArgs& args, bool scene_mode, bool animated) {
     if (scene_mode && !args.volumes.empty()) {
         std::fprintf(stderr, "tetrender: --volume is for quick mode; a scene lists `volumes`\n");
         return kExitUsage;
@@ -194,8 +186,6 @@ int run_render(const RenderArgs& args) {
                      args.quick_given.front().c_str());
         return kExitUsage;
     }
-    const bool animated = args.orbit != 0 || args.time_step == "all" || !args.frames_dir.empty() ||
-                          !args.movie.empty();
     if (!args.vectors.empty() && args.orbit != 0) {
         std::fprintf(stderr,
                      "tetrender: --vectors animates the splats' textures; it does not "
@@ -267,35 +257,42 @@ int run_render(const RenderArgs& args) {
                      "--camera-* values, not both\n");
         return kExitUsage;
     }
-    if (args.threads > 0) set_thread_count(args.threads);
+    return std::nullopt;
+}
 
-    PipelineOptions pipeline_options;
-    pipeline_options.progress = terminal_progress();
-    Pipeline pipeline(pipeline_options);
+// The scene to render: the scene file (recoloured by --colormap-file), or the quick-look scene
+// of a mesh file (its notes into `quick_notes`, printed with the first picture).
+Result<Scene> load_render_scene(const RenderArgs& args, bool scene_mode, Pipeline& pipeline,
+                                std::vector<std::string>& quick_notes) {
     Scene scene;
-    std::vector<std::string> quick_notes;  // printed with the first picture
     if (scene_mode) {
         auto read = read_scene(args.input);
-        if (!read.ok()) return report_error(read.error());
+        if (!read.ok()) return read.error();
         scene = std::move(read).value();
         if (!args.quick.colormap_file.empty()) {
             const std::string name = args.quick.colormap == "viridis" ? "" : args.quick.colormap;
             const auto preset = read_colormap_preset(args.quick.colormap_file, name);
-            if (!preset.ok()) return report_error(preset.error());
+            if (!preset.ok()) return preset.error();
             for (SceneVolume& v : scene.volumes) {
                 const TransferFunction& tf = v.transfer_function;
                 auto recoloured = preset_transfer_function(*preset, tf.color_points().front().s,
                                                            tf.color_points().back().s,
                                                            tf.opacity_points(), tf.unit_distance());
-                if (!recoloured.ok()) return report_error(recoloured.error());
+                if (!recoloured.ok()) return recoloured.error();
                 v.transfer_function = std::move(recoloured).value();
             }
         }
     } else {
         auto quick = quick_scene(pipeline, args, quick_notes);
-        if (!quick.ok()) return report_error(quick.error());
+        if (!quick.ok()) return quick.error();
         scene = std::move(quick).value();
     }
+    return scene;
+}
+
+// --method, --repetitions, --seed, --vectors and --sheet-buffer over the scene's method: the
+// exit code of a refusal (its message printed), or none.
+std::optional<int> override_method(const RenderArgs& args, Scene& scene) {
     const bool splat_keys = !args.vectors.empty() || args.sheet_buffer;
     if (!args.method.empty() || args.repetitions || args.seed || splat_keys) {
         MethodSpec method = scene.method.value_or(MethodSpec{});
@@ -318,25 +315,62 @@ int run_render(const RenderArgs& args) {
         if (args.sheet_buffer) method.options["compositing"] = std::string("sheet-buffer");
         scene.method = method;
     }
+    return std::nullopt;
+}
+
+// --camera in scene mode, and the files written beside the picture: --write-camera,
+// --write-scene, --write-colormap.
+Status apply_camera_and_write_side_files(const RenderArgs& args, bool scene_mode, Scene& scene) {
     if (scene_mode && !args.quick.camera_file.empty()) {
         auto camera = read_paraview_camera(args.quick.camera_file);
-        if (!camera.ok()) return report_error(camera.error());
+        if (!camera.ok()) return camera.error();
         scene.camera = *camera;
     }
     if (!args.write_camera_file.empty()) {
         const Status written = write_paraview_camera(scene.camera, args.write_camera_file);
-        if (!written.ok()) return report_error(written.error());
+        if (!written.ok()) return written.error();
     }
     if (!scene_mode && !args.write_scene_path.empty()) {
         const Status written = write_scene(scene, args.write_scene_path);
-        if (!written.ok()) return report_error(written.error());
+        if (!written.ok()) return written.error();
     }
     if (!args.write_colormap.empty()) {
         const Status written = write_colormap_presets(
             {preset_from_transfer_function(scene.volumes[0].transfer_function,
                                            scene.volumes[0].scalar)},
             args.write_colormap);
-        if (!written.ok()) return report_error(written.error());
+        if (!written.ok()) return written.error();
+    }
+    return Status{};
+}
+
+int run_render(const RenderArgs& args) {
+    RenderOptions options;
+    if (auto sort = sort_method_named(args.sort); sort.ok()) {
+        options.sort = *sort;
+    } else {
+        return report_usage(sort.error());
+    }
+    if (const Status set = set_integrator_option(options, args.integrator); !set.ok()) {
+        return report_usage(set.error());
+    }
+    const bool scene_mode = is_scene_file(args.input);
+    const bool animated = args.orbit != 0 || args.time_step == "all" || !args.frames_dir.empty() ||
+                          !args.movie.empty();
+    if (const auto refused = refuse_render_args(args, scene_mode, animated)) return *refused;
+    if (args.threads > 0) set_thread_count(args.threads);
+
+    PipelineOptions pipeline_options;
+    pipeline_options.progress = terminal_progress();
+    Pipeline pipeline(pipeline_options);
+    std::vector<std::string> quick_notes;  // printed with the first picture
+    auto loaded = load_render_scene(args, scene_mode, pipeline, quick_notes);
+    if (!loaded.ok()) return report_error(loaded.error());
+    Scene scene = std::move(loaded).value();
+    if (const auto refused = override_method(args, scene)) return *refused;
+    if (const Status done = apply_camera_and_write_side_files(args, scene_mode, scene);
+        !done.ok()) {
+        return report_error(done.error());
     }
     // One picture of `view`: rendered, notes printed, annotated.
     const bool legend = args.legend == "on" ||
