@@ -19,5 +19,6 @@ std::function<int()> add_flowvol_command(CLI::App& app);
 std::function<int()> add_compare_command(CLI::App& app);
 std::function<int()> add_advect_command(CLI::App& app);
 std::function<int()> add_spotnoise_command(CLI::App& app);
+std::function<int()> add_methods_command(CLI::App& app);
 
 }  // namespace tr::apps

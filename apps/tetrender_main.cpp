@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
     auto compare = add_compare_command(app);
     auto advect = add_advect_command(app);
     auto spotnoise = add_spotnoise_command(app);
+    auto methods = add_methods_command(app);
     for (CLI::App* sub : app.get_subcommands({})) {
         sub->footer(
             "Also: --max-memory SIZE (e.g. 8G): refuse up front what would need more "
@@ -113,6 +114,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("compare")) return compare();
         if (app.got_subcommand("advect")) return advect();
         if (app.got_subcommand("spotnoise")) return spotnoise();
+        if (app.got_subcommand("methods")) return methods();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tetrender: internal error: %s\n", e.what());
         return kExitError;

@@ -24,6 +24,8 @@ struct Error {
     ErrorCode code = ErrorCode::kInternal;
     std::string message;  // what is wrong, one line
     std::string where;    // file path, "path:line", JSON path or cell index; may be empty
+    std::string about;    // the caller's input it is about, by the library's name for it ("iso",
+                          // "slices[1]"), so a caller maps it to its own words; may be empty
 
     // "where: error: message" (or "error: message" when where is empty), one line.
     std::string to_string() const;
@@ -73,7 +75,17 @@ class [[nodiscard]] Result<void> {
 using Status = Result<void>;
 
 inline Error make_error(ErrorCode code, std::string message, std::string where = {}) {
-    return Error{code, std::move(message), std::move(where)};
+    Error error;
+    error.code = code;
+    error.message = std::move(message);
+    error.where = std::move(where);
+    return error;
+}
+
+// `error` with Error::about set.
+inline Error with_about(Error error, std::string about) {
+    error.about = std::move(about);
+    return error;
 }
 
 }  // namespace tr

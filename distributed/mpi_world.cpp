@@ -55,7 +55,7 @@ Status MpiWorld::agree(const Status& mine) const {
     broadcast_string(message, lowest);
     broadcast_string(where, lowest);
     if (size_ > 1) message += " (rank " + std::to_string(lowest) + ")";
-    return Error{static_cast<ErrorCode>(code), message, where};
+    return make_error(static_cast<ErrorCode>(code), message, where);
 }
 
 }  // namespace tr

@@ -1,6 +1,7 @@
 #include <core/stopwatch.h>
 #include <flowtex/advect_frames.h>
 #include <flowtex/advected_sheets.h>
+#include <flowtex/frame_loop.h>
 
 #include <chrono>
 #include <cmath>
@@ -54,19 +55,17 @@ Result<AdvectFramesReport> advect_frames(
     const CameraFrame frame(sheet_camera(sheets->sheet(0), options.width, options.height),
                             options.width, options.height);
     Image picture;
-    for (int k = 0; k <= options.steps; ++k) {
-        if (k > 0) {
-            const auto start = std::chrono::steady_clock::now();
-            sheets->advance();
-            report.advect_ms += ms_since(start);
-        }
-        const auto start = std::chrono::steady_clock::now();
-        const std::vector<TexturedMeshView> views = sheets->views(0);
-        rasterize_sheet(frame, views, sheets->texture(), options.raster, picture);
-        report.raster_ms += ms_since(start);
-        TR_TRY_STATUS(on_frame(k, picture));
-        ++report.frames;
-    }
+    TR_TRY(const FrameLoopTimes times, run_frame_loop(
+                                           options.steps, true, [&] { sheets->advance(); },
+                                           [&](int k) {
+                                               rasterize_sheet(frame, sheets->views(0),
+                                                               sheets->texture(), options.raster,
+                                                               picture);
+                                               return on_frame(k, picture);
+                                           }));
+    report.advect_ms = times.advance_ms;
+    report.raster_ms = times.draw_ms;
+    report.frames = times.drawn;
     return report;
 }
 

@@ -57,9 +57,7 @@ Result<std::unique_ptr<AdvectedSheets>> AdvectedSheets::create(
                                      options.sheet_resolution);
             if (!sheet.ok()) {
                 Error error = sheet.error();
-                if (options.index_slice_errors) {
-                    error.message = "slices[" + std::to_string(i) + "]: " + error.message;
-                }
+                error.about = "slices[" + std::to_string(i) + "]";
                 return error;
             }
             out->sheets_.push_back(std::make_unique<Sheet>(std::move(sheet).value()));

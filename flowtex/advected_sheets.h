@@ -2,7 +2,7 @@
 // Several advected sheets of one flow (seed 4.4, "several meshed sheets of semitransparent
 // textured polygons"): the slices (or a sheet from a file) made once, a texture advected over
 // each, frame after frame, one time step for all. What `tetrender advect` (one sheet) and the
-// scene method `texture-advection` (pipeline/texture_advection_method.h) run.
+// scene method `texture-advection` (pipeline/methods/texture_advection_method.h) run.
 
 #include <core/result.h>
 #include <flowtex/advection.h>
@@ -50,7 +50,6 @@ struct AdvectedSheetsOptions {
     int texture_size = 256;     // texels a side (power of two)
     int texture_feature = 4;    // the noise's smoothing radius in texels
     double texture_period = 0;  // world units per texture repeat; 0: half each sheet's longer side
-    bool index_slice_errors = false;  // a slice's error starts "slices[i]: " (scene files)
 };
 
 class AdvectedSheets {
@@ -60,9 +59,9 @@ class AdvectedSheets {
 
     // Makes the sheets and frame 0 of their advection. `mesh`, `adjacency` and `velocity` must
     // outlive the object. Errors (one line): a slice that misses the mesh (with the bounds), a
-    // zero normal, more than kMaxSheets slices, a sheet file outside the mesh or not planar,
-    // bad texture options, dt < 0. Zero velocity everywhere: still frames (dt 1, no
-    // re-injection). Cost: per sheet a point location per grid point.
+    // zero normal (either with Error::about "slices[i]"), more than kMaxSheets slices, a sheet
+    // file outside the mesh or not planar, bad texture options, dt < 0. Zero velocity everywhere:
+    // still frames (dt 1, no re-injection). Cost: per sheet a point location per grid point.
     static Result<std::unique_ptr<AdvectedSheets>> create(const TetMesh& mesh,
                                                           const FaceAdjacency& adjacency,
                                                           const VelocityField& velocity,

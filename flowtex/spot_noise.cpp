@@ -28,26 +28,32 @@ Result<SpotNoise> SpotNoise::create(const TetMesh& mesh, const PointLocator& loc
                                     const Field& scalar, const Flow& flow,
                                     const SpotNoiseOptions& options) {
     if (scalar.num_components != 1 || scalar.num_tuples() != mesh.num_points()) {
-        return make_error(ErrorCode::kInvalidArgument,
-                          "spot noise: '" + scalar.name + "' is not a scalar point array (it has " +
-                              std::to_string(scalar.num_components) + " components)");
+        return with_about(
+            make_error(ErrorCode::kInvalidArgument,
+                       "spot noise: '" + scalar.name + "' is not a scalar point array (it has " +
+                           std::to_string(scalar.num_components) + " components)"),
+            "scalar");
     }
     if (options.count == 0 || options.count > kMaxSpots) {
-        return make_error(ErrorCode::kInvalidArgument, "spot noise: count must be 1 .. " +
-                                                           std::to_string(kMaxSpots) + ", not " +
-                                                           std::to_string(options.count));
+        return with_about(make_error(ErrorCode::kInvalidArgument,
+                                     "spot noise: count must be 1 .. " + std::to_string(kMaxSpots) +
+                                         ", not " + std::to_string(options.count)),
+                          "count");
     }
     if (!(options.band > 0) || !std::isfinite(options.band) || !(options.dt > 0) ||
         !std::isfinite(options.dt) || options.lifetime_frames < 0) {
-        return make_error(ErrorCode::kInvalidArgument,
-                          "spot noise: band and dt must be positive and finite, lifetime >= 0");
+        return with_about(
+            make_error(ErrorCode::kInvalidArgument,
+                       "spot noise: band and dt must be positive and finite, lifetime >= 0"),
+            "band");
     }
     const auto [lo, hi] = field_range(scalar, 0);
     if (!std::isfinite(options.iso) || !(options.iso >= lo && options.iso <= hi)) {
-        return make_error(ErrorCode::kInvalidArgument,
-                          "spot noise: iso " + format_number(options.iso) + " is outside '" +
-                              scalar.name + "''s range [" + format_number(lo) + ", " +
-                              format_number(hi) + "]");
+        return with_about(make_error(ErrorCode::kInvalidArgument,
+                                     "spot noise: iso " + format_number(options.iso) +
+                                         " is outside '" + scalar.name + "''s range [" +
+                                         format_number(lo) + ", " + format_number(hi) + "]"),
+                          "iso");
     }
     SpotNoise noise(mesh, locator, scalar, flow, options);
     if (const auto* mesh_flow = dynamic_cast<const MeshFlow*>(&flow);
@@ -85,10 +91,11 @@ Result<SpotNoise> SpotNoise::create(const TetMesh& mesh, const PointLocator& loc
         noise.band_cdf_.push_back(total);
     }
     if (noise.band_tets_.empty() || !(total > 0)) {
-        return make_error(ErrorCode::kInvalidArgument,
-                          "spot noise: no tet of the mesh meets the band " +
-                              format_number(options.band) + " around '" + scalar.name +
-                              "' = " + format_number(options.iso));
+        return with_about(make_error(ErrorCode::kInvalidArgument,
+                                     "spot noise: no tet of the mesh meets the band " +
+                                         format_number(options.band) + " around '" + scalar.name +
+                                         "' = " + format_number(options.iso)),
+                          "band");
     }
     for (double& c : noise.band_cdf_) c /= total;
 
@@ -109,9 +116,10 @@ Result<SpotNoise> SpotNoise::create(const TetMesh& mesh, const PointLocator& loc
             options.lifetime_frames > 0 ? static_cast<int>(i * 7919 % options.lifetime_frames) : 0;
     });
     if (std::find(noise.flags_.begin(), noise.flags_.end(), 0) != noise.flags_.end()) {
-        return make_error(ErrorCode::kInvalidArgument,
-                          "spot noise: the flow is not defined in the band around '" + scalar.name +
-                              "' = " + format_number(options.iso));
+        return with_about(make_error(ErrorCode::kInvalidArgument,
+                                     "spot noise: the flow is not defined in the band around '" +
+                                         scalar.name + "' = " + format_number(options.iso)),
+                          "band");
     }
     noise.build_grid();
     return noise;

@@ -65,8 +65,9 @@ class SpotNoise {
     // outside the scalar's range (the message gives the range), a scalar field that is not one
     // component a point, count 0 or above kMaxSpots, band or dt not positive and finite, a band
     // that holds no tet, a spot that found no point of the band with a defined flow in 10000
-    // tries. Cost: O(tets) to find the band's tets, rejection sampling per spot, and
-    // 16 x count samples (2^18 .. 2^22) for the reseeding grid's targets.
+    // tries. Error::about names the option: "scalar", "count", "band" or "iso". Cost: O(tets) to
+    // find the band's tets, rejection sampling per spot, and 16 x count samples (2^18 .. 2^22) for
+    // the reseeding grid's targets.
     static Result<SpotNoise> create(const TetMesh& mesh, const PointLocator& locator,
                                     const Field& scalar, const Flow& flow,
                                     const SpotNoiseOptions& options);

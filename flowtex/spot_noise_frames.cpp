@@ -1,5 +1,6 @@
 #include <core/stopwatch.h>
 #include <flowtex/flow.h>
+#include <flowtex/frame_loop.h>
 #include <flowtex/spot_noise_frames.h>
 
 #include <chrono>
@@ -25,19 +26,24 @@ Result<std::unique_ptr<SpotNoiseRun>> start_spot_noise(const TetMesh& mesh,
                                                        const SpotNoiseFramesOptions& options) {
     if (options.steps < 0 || options.width < 1 || options.height < 1 || options.spots.band < 0 ||
         options.spots.dt < 0 || !std::isfinite(options.spots.dt)) {
-        return make_error(ErrorCode::kInvalidArgument,
-                          "spot noise needs steps >= 0, a positive size, band >= 0 and dt >= 0");
+        return with_about(
+            make_error(ErrorCode::kInvalidArgument,
+                       "spot noise needs steps >= 0, a positive size, band >= 0 and dt >= 0"),
+            "band");
     }
     const Field* scalar = find_field(mesh.point_fields(), options.scalar);
     if (!scalar) {
-        return make_error(
-            ErrorCode::kNotFound,
-            "no point array '" + options.scalar + "' (scalar arrays: " + scalar_arrays(mesh) + ")");
+        return with_about(
+            make_error(ErrorCode::kNotFound, "no point array '" + options.scalar +
+                                                 "' (scalar arrays: " + scalar_arrays(mesh) + ")"),
+            "scalar");
     }
     if (scalar->num_components != 1) {
-        return make_error(ErrorCode::kInvalidArgument,
-                          "'" + options.scalar + "' has " + std::to_string(scalar->num_components) +
-                              " components; --scalar needs a scalar (" + scalar_arrays(mesh) + ")");
+        return with_about(
+            make_error(ErrorCode::kInvalidArgument,
+                       "'" + options.scalar + "' has " + std::to_string(scalar->num_components) +
+                           " components; --scalar needs a scalar (" + scalar_arrays(mesh) + ")"),
+            "scalar");
     }
     const double diagonal = glm::length(mesh.bounds().size());
     SpotNoiseOptions spot_options = options.spots;
@@ -47,7 +53,8 @@ Result<std::unique_ptr<SpotNoiseRun>> start_spot_noise(const TetMesh& mesh,
     const bool unsteady = !velocity.is_steady();
     if (!options.start_time_set) spot_options.start_time = unsteady ? velocity.first_time() : 0.0;
     if (!std::isfinite(spot_options.start_time)) {
-        return make_error(ErrorCode::kInvalidArgument, "the start time must be finite");
+        return with_about(make_error(ErrorCode::kInvalidArgument, "the start time must be finite"),
+                          "start_time");
     }
     auto run = std::make_unique<SpotNoiseRun>();
     run->flow = std::make_unique<MeshFlow>(mesh, adjacency, velocity);
@@ -110,19 +117,19 @@ Result<SpotNoiseFramesReport> spot_noise_frames(
     }
     SpotBuffers buffers;
     Image picture;
-    for (int k = 0; k <= options.steps; ++k) {
-        if (k > 0) {
-            const auto start = std::chrono::steady_clock::now();
-            spots.advance();
-            report.reseeded += spots.reseeded();
-            report.advect_ms += ms_since(start);
-        }
-        const auto start = std::chrono::steady_clock::now();
-        render_spots(frame, spots, raster, buffers, picture);
-        report.raster_ms += ms_since(start);
-        TR_TRY_STATUS(on_frame(k, picture));
-        ++report.frames;
-    }
+    TR_TRY(const FrameLoopTimes times, run_frame_loop(
+                                           options.steps, true,
+                                           [&] {
+                                               spots.advance();
+                                               report.reseeded += spots.reseeded();
+                                           },
+                                           [&](int k) {
+                                               render_spots(frame, spots, raster, buffers, picture);
+                                               return on_frame(k, picture);
+                                           }));
+    report.advect_ms = times.advance_ms;
+    report.raster_ms = times.draw_ms;
+    report.frames = times.drawn;
     return report;
 }
 

@@ -50,7 +50,8 @@ struct SpotNoiseFramesReport {
 
 // Spots seeded and timed as spot_noise_frames does, before its frames: the flow they follow,
 // the spots at frame 0 (their dt and lifetime set) and the report's band, dt, counts and mean
-// speed. Errors: spot_noise_frames' (but the camera's and on_frame's).
+// speed. Errors: spot_noise_frames' (but the camera's and on_frame's), Error::about naming the
+// option ("scalar", "count", "band", "iso", "start_time").
 struct SpotNoiseRun {
     std::unique_ptr<MeshFlow> flow;  // the spots keep a reference
     std::optional<SpotNoise> spots;

@@ -163,7 +163,7 @@ Result<FlowVolume> grow_scene_flow_volume(const FlowDomain& domain, const FlowVo
         if (!fv.ok()) return with_where(fv.error(), domain.path);
         return std::move(fv).value();
     } catch (const std::exception& e) {  // e.g. out of memory: an error, not a crash
-        return Error{ErrorCode::kInternal, e.what(), domain.path};
+        return make_error(ErrorCode::kInternal, e.what(), domain.path);
     }
 }
 

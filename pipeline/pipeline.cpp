@@ -1,7 +1,8 @@
 #include <core/config.h>
 #include <core/memory_budget.h>
+#include <core/parallel.h>
 #include <mesh/point_data.h>
-#include <pipeline/method.h>
+#include <pipeline/methods/method.h>
 #include <pipeline/pipeline.h>
 
 #if TETRENDER_HAS_VTK
@@ -142,6 +143,20 @@ bool may_be_in_view(const Bounds3& box, const CameraFrame& camera) {
     return x1 >= 0 && y1 >= 0 && x0 <= camera.width() && y0 <= camera.height();
 }
 
+// A note when the scene gives `repetitions` or `seed` and the method's table says it ignores
+// them; empty otherwise.
+std::string ignored_method_keys_note(const Scene& scene, const RenderMethod& method) {
+    if (!scene.method) return {};
+    const bool repetitions = scene.method->repetitions && !method.keys().uses_repetitions;
+    const bool seed = scene.method->seed && !method.keys().uses_seed;
+    if (!repetitions && !seed) return {};
+    return std::string(repetitions && seed ? "repetitions and seed apply"
+                       : repetitions       ? "repetitions apply"
+                                           : "seed applies") +
+           " to the stochastic methods: " + std::string(method.name()) + " ignores " +
+           (repetitions && seed ? "them" : "it");
+}
+
 }  // namespace
 
 Result<RenderResult> Pipeline::render(const Scene& scene, const RenderOptions& options) {
@@ -149,6 +164,14 @@ Result<RenderResult> Pipeline::render(const Scene& scene, const RenderOptions& o
     const RenderMethod* method = find_method(scene.method_name());
     try {
         TR_TRY(RenderResult result, method->render(*this, scene, options));
+        if (std::string note = ignored_method_keys_note(scene, *method); !note.empty()) {
+            result.notes.insert(result.notes.begin(), std::move(note));
+        }
+        // What every method's stats say, set here once.
+        result.stats.set("method", std::string(method->name()));
+        result.stats.set("threads", thread_count());
+        result.stats.set("width", scene.width);
+        result.stats.set("height", scene.height);
         // A volume out of view draws nothing: say so (the picture is right, but rarely meant).
         // Not for a transparent picture, which is a part of one.
         if (!scene.flow_volume && !options.transparent) {

@@ -1,6 +1,6 @@
 #pragma once
 // The one path from a scene to an image (docs/architecture.md): load each volume's mesh, then
-// hand the scene to the rendering method it names (pipeline/method.h), which takes what it
+// hand the scene to the rendering method it names (pipeline/methods/method.h), which takes what it
 // needs from here — visibility orders, shaders, opaque surfaces, flow volumes. A Pipeline keeps
 // what it loaded and prepared (meshes, adjacency, convexification, sort buffers, the
 // pre-integrated table) between renders, so another view of the same scene (an orbit, the

@@ -1,7 +1,7 @@
 #include <apps/viewer/pbvr_worker.h>
 #include <core/stopwatch.h>
 #include <pipeline/loaded_mesh.h>
-#include <pipeline/splat_method.h>
+#include <pipeline/methods/splat_method.h>
 #include <project/pbvr/pbvr_common.h>
 #include <project/segment_shader.h>
 

@@ -7,8 +7,8 @@
 // it: it shows the latest accumulated picture.
 //
 // Splatting (ViewMethod::kSplat) runs here too: one request is one picture
-// (pipeline/splat_method.h render_splat_picture, as `tetrender render --method splat` draws it),
-// finished at once; with vector splats the request names the frame of the texture cycle.
+// (pipeline/methods/splat_method.h render_splat_picture, as `tetrender render --method splat` draws
+// it), finished at once; with vector splats the request names the frame of the texture cycle.
 //
 // O-PBVR keeps the particles of a view's first batches (ObjectParticleSet, up to
 // PbvrSettings::max_kept_bytes): when a new request differs only in its transfer function, or

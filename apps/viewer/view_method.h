@@ -6,9 +6,9 @@
 // modes' settings, from the command line or a scene file's `method` key.
 
 #include <core/result.h>
+#include <pipeline/methods/splat_method.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/scene.h>
-#include <pipeline/splat_method.h>
 #include <project/pbvr/pbvr_image.h>
 #include <project/pbvr/pbvr_object.h>
 
@@ -60,8 +60,8 @@ struct PbvrSettings {
     // O-PBVR: the particles of the first batches of a view are kept (ObjectParticleSet) up to
     // this many bytes, to re-render after a transfer-function edit or an orthographic rotation.
     std::size_t max_kept_bytes = std::size_t{512} << 20;
-    // splat: the scene's splat keys and --vectors / --cycle (pipeline/splat_method.h; its frame
-    // comes with each request), and how many of the mesh's points are the file's (0: all; the
+    // splat: the scene's splat keys and --vectors / --cycle (pipeline/methods/splat_method.h; its
+    // frame comes with each request), and how many of the mesh's points are the file's (0: all; the
     // convexification's come after them and are not drawn).
     SplatSettings splat;
     std::size_t splat_points = 0;

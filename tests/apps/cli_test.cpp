@@ -75,6 +75,25 @@ TEST(Cli, UsageErrorsExitWithTwo) {
     EXPECT_EQ(run_cli("info a.vtu --time-step -3").exit_code, 2);
 }
 
+TEST(Cli, MethodsPrintsEveryKeyTableAndRefusesAnUnknownName) {
+    const auto all = run_cli("methods");
+    EXPECT_EQ(all.exit_code, 0) << all.err;
+    for (const char* name : {"projected-tetrahedra", "pbvr-object", "pbvr-image", "splat",
+                             "texture-advection", "spot-noise"}) {
+        EXPECT_NE(all.out.find("### `" + std::string(name) + "`"), std::string::npos) << name;
+    }
+    const auto one = run_cli("methods splat");
+    EXPECT_EQ(one.exit_code, 0);
+    EXPECT_NE(one.out.find("| `cycle` | an integer from 1 to 1024 | 8 |"), std::string::npos)
+        << one.out;
+    EXPECT_EQ(one.out.find("pbvr"), std::string::npos) << one.out;
+    const auto unknown = run_cli("methods splats");
+    EXPECT_EQ(unknown.exit_code, 2);
+    EXPECT_EQ(unknown.err,
+              "tetrender methods: no method 'splats' (methods: projected-tetrahedra, pbvr-object, "
+              "pbvr-image, splat, texture-advection, spot-noise)\n");
+}
+
 TEST(Cli, InfoDescribesAMesh) {
     const testing::TempDir temp;
     const std::string dir = temp.string();

@@ -1,4 +1,4 @@
-// The scene methods texture-advection and spot-noise (pipeline/texture_advection_method.h):
+// The scene methods texture-advection and spot-noise (pipeline/methods/texture_advection_method.h):
 // their pictures against the flowtex libraries' own frames (a scene whose volume is clear),
 // depth order against opaque geometry and between sheets, attenuation by the volume in front.
 #include <flowtex/advect_frames.h>

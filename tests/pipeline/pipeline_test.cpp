@@ -3,10 +3,10 @@
 // between views, and flow volumes and opaque surfaces through the one entry point.
 #include <core/config.h>
 #include <mesh/tetrahedralize.h>
-#include <pipeline/method.h>
+#include <pipeline/methods/method.h>
+#include <pipeline/methods/splat_method.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
-#include <pipeline/splat_method.h>
 #include <project/colormap.h>
 #include <project/opaque_geometry.h>
 #include <sort/order_verifier.h>

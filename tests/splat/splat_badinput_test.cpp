@@ -4,8 +4,8 @@
 // saying what and where, never a picture.
 #include <core/camera.h>
 #include <core/config.h>
+#include <pipeline/methods/splat_method.h>
 #include <pipeline/pipeline.h>
-#include <pipeline/splat_method.h>
 #include <project/colormap.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/support/temp_dir.h>

@@ -1,6 +1,5 @@
-#include <core/parallel.h>
 #include <core/stopwatch.h>
-#include <pipeline/pbvr_methods.h>
+#include <pipeline/methods/pbvr_methods.h>
 #include <pipeline/scene_volumes.h>
 #include <project/cpu_renderer.h>
 #include <project/opaque_geometry.h>
@@ -57,38 +56,59 @@ void set_view(VolumeScene& ps, const CameraFrame& frame, const Scene& scene,
     }
 }
 
-int repetitions_of(const Scene& scene) {
-    return scene.method && scene.method->repetitions ? *scene.method->repetitions
-                                                     : kDefaultRepetitions;
-}
+int repetitions_of(const Scene& scene) { return repetitions_of(scene, kDefaultRepetitions); }
 
-std::uint64_t seed_of(const Scene& scene) {
-    return scene.method && scene.method->seed ? static_cast<std::uint64_t>(*scene.method->seed) : 1;
-}
+std::uint64_t seed_of(const Scene& scene) { return seed_of(scene, 1); }
+
+const MethodKeys kObjectKeys{
+    .keys =
+        {{.key = "subpixel_level",
+          .type = KeyType::kInteger,
+          .default_value = "1",
+          .doc = "L x L sub-pixels a pixel; the work repetitions x L^2 x pixels is capped (2^38)",
+          .lo = 1,
+          .hi = 16},
+         {.key = "sampling",
+          .type = KeyType::kChoice,
+          .default_value = "`\"exact\"`",
+          .doc =
+              "`exact`: Poisson thinning of the true density; `uniform`: the paper's cell-constant "
+              "density; `metropolis`: the paper's Metropolis placement",
+          .choices = {"exact", "uniform", "metropolis"}}},
+    .uses_repetitions = true,
+    .uses_seed = true};
+
+const MethodKeys kImageKeys{
+    .keys =
+        {{.key = "depth",
+          .type = KeyType::kChoice,
+          .default_value = "`\"inverse-cdf\"`",
+          .doc = "where in its segment a particle lies: `inverse-cdf` (exact); `entry`, `middle`, "
+                 "`exit`, `random` for the paper's comparison",
+          .choices = {"inverse-cdf", "entry", "middle", "exit", "random"}},
+         {.key = "stratified",
+          .type = KeyType::kBool,
+          .default_value = "true",
+          .doc =
+              "true: each segment's repetitions on a randomly rotated lattice; false: the paper's "
+              "independent repetitions"},
+         {.key = "control_variate",
+          .type = KeyType::kBool,
+          .default_value = "true",
+          .doc = "true: the known probability that a pixel has any particle takes out most of the "
+                 "noise, unbiased; false: the plain mean"}},
+    .uses_repetitions = true,
+    .uses_seed = true};
 
 class PbvrObject final : public RenderMethod {
   public:
     std::string_view name() const override { return "pbvr-object"; }
     bool draws_transparent() const override { return true; }
+    const MethodKeys& keys() const override { return kObjectKeys; }
 
     Status check(const Scene& scene, const RenderOptions& options) const override {
-        TR_TRY_STATUS(only_keys(scene, name(), {"subpixel_level", "sampling"}));
-        int level = 1;
-        if (const MethodOption* o = option(scene, "subpixel_level")) {
-            const auto* v = std::get_if<std::int64_t>(o);
-            if (!v || *v < 1 || *v > 16) {
-                return method_option_error(scene, "subpixel_level",
-                                           "expected an integer in [1, 16]");
-            }
-            level = static_cast<int>(*v);
-        }
-        if (const MethodOption* o = option(scene, "sampling")) {
-            const auto* v = std::get_if<std::string>(o);
-            if (!v || !parse_particle_sampling(*v)) {
-                return method_option_error(scene, "sampling",
-                                           "expected \"exact\", \"uniform\" or \"metropolis\"");
-            }
-        }
+        TR_TRY_STATUS(check_method_keys(scene, name(), keys()));
+        const auto level = static_cast<int>(integer_key(scene, "subpixel_level", 1));
         return check_common(scene, options, name(),
                             static_cast<double>(repetitions_of(scene)) * level * level);
     }
@@ -103,11 +123,10 @@ class PbvrObject final : public RenderMethod {
         ObjectPbvrOptions options;
         options.repetitions = repetitions_of(scene);
         options.seed = seed_of(scene);
-        if (const MethodOption* o = option(scene, "subpixel_level")) {
-            options.subpixel_level = static_cast<int>(std::get<std::int64_t>(*o));
-        }
-        if (const MethodOption* o = option(scene, "sampling")) {
-            options.sampling = *parse_particle_sampling(std::get<std::string>(*o));
+        options.subpixel_level =
+            static_cast<int>(integer_key(scene, "subpixel_level", options.subpixel_level));
+        if (option(scene, "sampling")) {
+            options.sampling = *parse_particle_sampling(string_key(scene, "sampling"));
         }
         VolumeScene& ps = loaded->scene;
         set_view(ps, frame, scene, layer, render_options);
@@ -131,14 +150,10 @@ class PbvrObject final : public RenderMethod {
         s.set("resolve_ms", stats.resolve_ms);
         s.set("particles", stats.particles);
         s.set("candidates", stats.candidates);
-        s.set("method", std::string(name()));
         s.set("repetitions", options.repetitions);
         s.set("subpixel_level", options.subpixel_level);
         s.set("sampling", std::string(particle_sampling_name(options.sampling)));
         s.set("seed", options.seed);
-        s.set("threads", thread_count());
-        s.set("width", scene.width);
-        s.set("height", scene.height);
         return result;
     }
 };
@@ -147,24 +162,10 @@ class PbvrImage final : public RenderMethod {
   public:
     std::string_view name() const override { return "pbvr-image"; }
     bool draws_transparent() const override { return true; }
+    const MethodKeys& keys() const override { return kImageKeys; }
 
     Status check(const Scene& scene, const RenderOptions& options) const override {
-        TR_TRY_STATUS(only_keys(scene, name(), {"depth", "stratified", "control_variate"}));
-        if (const MethodOption* o = option(scene, "depth")) {
-            const auto* v = std::get_if<std::string>(o);
-            if (!v || !parse_particle_depth(*v)) {
-                return method_option_error(scene, "depth",
-                                           "expected \"inverse-cdf\", \"entry\", \"middle\", "
-                                           "\"exit\" or \"random\"");
-            }
-        }
-        for (const char* key : {"stratified", "control_variate"}) {
-            if (const MethodOption* o = option(scene, key)) {
-                if (!std::holds_alternative<bool>(*o)) {
-                    return method_option_error(scene, key, "expected true or false");
-                }
-            }
-        }
+        TR_TRY_STATUS(check_method_keys(scene, name(), keys()));
         return check_common(scene, options, name(), repetitions_of(scene));
     }
 
@@ -178,15 +179,10 @@ class PbvrImage final : public RenderMethod {
         ImagePbvrOptions options;
         options.repetitions = repetitions_of(scene);
         options.seed = seed_of(scene);
-        if (const MethodOption* o = option(scene, "depth")) {
-            options.depth = *parse_particle_depth(std::get<std::string>(*o));
-        }
-        if (const MethodOption* o = option(scene, "stratified")) {
-            options.stratified = std::get<bool>(*o);
-        }
-        if (const MethodOption* o = option(scene, "control_variate")) {
-            options.control_variate = std::get<bool>(*o);
-        }
+        if (option(scene, "depth"))
+            options.depth = *parse_particle_depth(string_key(scene, "depth"));
+        options.stratified = bool_key(scene, "stratified", options.stratified);
+        options.control_variate = bool_key(scene, "control_variate", options.control_variate);
         VolumeScene& ps = loaded->scene;
         set_view(ps, frame, scene, layer, render_options);
         if (ps.volumes.size() == 1) {  // the segments' mean colours (pbvr_image.h)
@@ -203,15 +199,11 @@ class PbvrImage final : public RenderMethod {
         s.set("raster_ms", stats.raster_ms);
         s.set("fragments", stats.fragments);
         s.set("particles", stats.particles);
-        s.set("method", std::string(name()));
         s.set("repetitions", options.repetitions);
         s.set("depth", std::string(particle_depth_name(options.depth)));
         s.set("stratified", options.stratified);
         s.set("control_variate", options.control_variate);
         s.set("seed", options.seed);
-        s.set("threads", thread_count());
-        s.set("width", scene.width);
-        s.set("height", scene.height);
         return result;
     }
 };

@@ -1,8 +1,8 @@
 #include <core/parallel.h>
 #include <core/stopwatch.h>
 #include <mesh/field.h>
+#include <pipeline/methods/splat_method.h>
 #include <pipeline/scene_volumes.h>
-#include <pipeline/splat_method.h>
 #include <project/splat/point_spacing.h>
 #include <project/splat/splat_renderer.h>
 #include <project/splat/vector_splat.h>
@@ -119,76 +119,73 @@ void set_raster_stats(NamedStats& s, const Stats& stats, std::clock_t cpu, std::
     s.set("spacing", spacing);
 }
 
+const MethodKeys kSplatKeys{
+    .keys = {{.key = "kernel",
+              .type = KeyType::kChoice,
+              .default_value = "`\"crawfis-max\"`",
+              .doc = "`crawfis-max`: the paper's cubic; `gaussian`",
+              .choices = {"crawfis-max", "gaussian"}},
+             {.key = "spacing",
+              .type = KeyType::kNumber,
+              .default_value = "from the points",
+              .doc = "the lattice spacing the kernel is scaled to; default: that of a lattice "
+                     "filling the points' bounds, exact for a regular grid with one spacing",
+              .lo = 0,
+              .open_lo = true},
+             {.key = "compositing",
+              .type = KeyType::kChoice,
+              .default_value = "`\"per-splat\"`",
+              .doc = "`per-splat`, the paper's: each splat composited whole, back to front; "
+                     "`sheet-buffer`: Westover's sheet buffer, the splats summed per sheet of "
+                     "thickness `spacing` across the lattice axis nearest the view (no popping "
+                     "during a rotation; docs/benchmarks.md)",
+              .choices = {"per-splat", "sheet-buffer"}},
+             {.key = "radius",
+              .type = KeyType::kString,
+              .doc = "a 1-component point array: each point's own kernel scale h (SPH smoothing "
+                     "lengths); each > 0 and finite, the first that is not is an error naming "
+                     "its point; not with `vectors`",
+              .expected = "the name of a point array"},
+             {.key = "vectors",
+              .type = KeyType::kString,
+              .doc = "a 3-component point array: textured vector splats (the paper's 4.2), each "
+                     "point a streak-textured rectangle along its projected vector, coloured by "
+                     "the scalar; per-splat compositing only",
+              .expected = "the name of a point array"},
+             {.key = "cycle",
+              .type = KeyType::kInteger,
+              .default_value = "8",
+              .doc = "with `vectors`: N textures in the animation's cycle",
+              .lo = 1,
+              .hi = kMaxSplatCycle},
+             {.key = "frame",
+              .type = KeyType::kInteger,
+              .default_value = "0",
+              .doc = "with `vectors`: which texture of the cycle, modulo N (`render_splat_cycle` "
+                     "in pipeline/methods/splat_method.h renders all N)"}}};
+
 class Splat final : public RenderMethod {
   public:
     std::string_view name() const override { return "splat"; }
 
+    const MethodKeys& keys() const override { return kSplatKeys; }
+
     Status check(const Scene& scene, const RenderOptions& options) const override {
-        TR_TRY_STATUS(
-            only_keys(scene, name(),
-                      {"kernel", "spacing", "compositing", "radius", "vectors", "cycle", "frame"}));
-        if (const MethodOption* o = option(scene, "radius")) {
-            const auto* v = std::get_if<std::string>(o);
-            if (!v || v->empty()) {
-                return method_option_error(scene, "radius", "expected the name of a point array");
-            }
-            if (option(scene, "vectors")) {
-                return method_option_error(scene, "radius",
-                                           "applies to scalar splats, not with 'vectors'");
-            }
+        TR_TRY_STATUS(check_method_keys(scene, name(), keys()));
+        // The rules between keys.
+        if (option(scene, "radius") && option(scene, "vectors")) {
+            return method_option_error(scene, "radius",
+                                       "applies to scalar splats, not with 'vectors'");
         }
-        if (const MethodOption* o = option(scene, "vectors")) {
-            const auto* v = std::get_if<std::string>(o);
-            if (!v || v->empty()) {
-                return method_option_error(scene, "vectors", "expected the name of a point array");
-            }
-            const MethodOption* c = option(scene, "compositing");
-            if (c && std::get_if<std::string>(c) &&
-                *std::get_if<std::string>(c) == "sheet-buffer") {
-                return method_option_error(scene, "compositing",
-                                           "the sheet buffer is for scalar splats; vector splats "
-                                           "are composited per splat");
-            }
-        }
-        if (const MethodOption* o = option(scene, "cycle")) {
-            const std::int64_t* i = std::get_if<std::int64_t>(o);
-            if (!i || *i < 1 || *i > kMaxSplatCycle) {
-                return method_option_error(
-                    scene, "cycle",
-                    "expected an integer from 1 to " + std::to_string(kMaxSplatCycle));
-            }
-        }
-        if (const MethodOption* o = option(scene, "frame")) {
-            if (!std::get_if<std::int64_t>(o)) {
-                return method_option_error(scene, "frame", "expected an integer");
-            }
+        if (option(scene, "vectors") && string_key(scene, "compositing") == "sheet-buffer") {
+            return method_option_error(scene, "compositing",
+                                       "the sheet buffer is for scalar splats; vector splats "
+                                       "are composited per splat");
         }
         for (const char* key : {"cycle", "frame"}) {
             if (option(scene, key) && !option(scene, "vectors")) {
                 return method_option_error(scene, key,
                                            "applies to vector splats: give the key 'vectors'");
-            }
-        }
-        if (const MethodOption* o = option(scene, "compositing")) {
-            const auto* v = std::get_if<std::string>(o);
-            if (!v || !parse_compositing(*v)) {
-                return method_option_error(scene, "compositing",
-                                           "expected \"per-splat\" or \"sheet-buffer\"");
-            }
-        }
-        if (const MethodOption* o = option(scene, "kernel")) {
-            const auto* v = std::get_if<std::string>(o);
-            if (!v || !parse_kernel(*v)) {
-                return method_option_error(scene, "kernel",
-                                           "expected \"crawfis-max\" or \"gaussian\"");
-            }
-        }
-        if (const MethodOption* o = option(scene, "spacing")) {
-            const double* d = std::get_if<double>(o);
-            const std::int64_t* i = std::get_if<std::int64_t>(o);
-            const double v = d ? *d : i ? static_cast<double>(*i) : 0.0;
-            if (!(v > 0) || !std::isfinite(v)) {
-                return method_option_error(scene, "spacing", "expected a number > 0");
             }
         }
         auto refuse = [&](const std::string& what) {
@@ -211,10 +208,6 @@ class Splat final : public RenderMethod {
     Result<RenderResult> render(Pipeline& pipeline, const Scene& scene,
                                 const RenderOptions&) const override {
         RenderResult result;
-        if (scene.method && (scene.method->repetitions || scene.method->seed)) {
-            result.notes.push_back(
-                "repetitions and seed apply to the stochastic methods: splat ignores them");
-        }
         TR_TRY(const std::unique_ptr<SceneVolumes> loaded,
                load_scene_volumes(pipeline, scene, result.stats));
         const CameraFrame frame(scene.camera, scene.width, scene.height);
@@ -229,8 +222,6 @@ class Splat final : public RenderMethod {
         picture.where = scene.volumes[0].mesh.string();
         TR_TRY(result.image,
                render_splat_picture(picture, splat_settings(scene), &result.stats, &result.notes));
-        result.stats.set("width", scene.width);
-        result.stats.set("height", scene.height);
         return result;
     }
 };
@@ -241,33 +232,17 @@ std::unique_ptr<RenderMethod> make_splat_method() { return std::make_unique<Spla
 
 SplatSettings splat_settings(const Scene& scene) {
     SplatSettings settings;
-    if (const MethodOption* o = option(scene, "kernel")) {
-        if (const auto* v = std::get_if<std::string>(o)) {
-            settings.kernel = parse_kernel(*v).value_or(SplatKernel::kCrawfisMax);
-            settings.kernel_given = true;
-        }
+    if (option(scene, "kernel")) {
+        settings.kernel = parse_kernel(string_key(scene, "kernel")).value_or(settings.kernel);
+        settings.kernel_given = true;
     }
-    if (const MethodOption* o = option(scene, "compositing")) {
-        if (const auto* v = std::get_if<std::string>(o)) {
-            settings.compositing = parse_compositing(*v).value_or(SplatCompositing::kPerSplat);
-        }
-    }
-    if (const MethodOption* o = option(scene, "spacing")) {
-        if (const double* d = std::get_if<double>(o)) settings.spacing = *d;
-        if (const auto* i = std::get_if<std::int64_t>(o)) settings.spacing = double(*i);
-    }
-    if (const MethodOption* o = option(scene, "radius")) {
-        if (const auto* v = std::get_if<std::string>(o)) settings.radius = *v;
-    }
-    if (const MethodOption* o = option(scene, "vectors")) {
-        if (const auto* v = std::get_if<std::string>(o)) settings.vectors = *v;
-    }
-    if (const MethodOption* o = option(scene, "cycle")) {
-        if (const auto* i = std::get_if<std::int64_t>(o)) settings.cycle = static_cast<int>(*i);
-    }
-    if (const MethodOption* o = option(scene, "frame")) {
-        if (const auto* i = std::get_if<std::int64_t>(o)) settings.frame = *i;
-    }
+    settings.compositing =
+        parse_compositing(string_key(scene, "compositing")).value_or(settings.compositing);
+    if (option(scene, "spacing")) settings.spacing = number_key(scene, "spacing", 0.0);
+    settings.radius = string_key(scene, "radius");
+    settings.vectors = string_key(scene, "vectors");
+    settings.cycle = static_cast<int>(integer_key(scene, "cycle", settings.cycle));
+    settings.frame = integer_key(scene, "frame", settings.frame);
     return settings;
 }
 

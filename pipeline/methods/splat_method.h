@@ -17,7 +17,7 @@
 #include <core/image.h>
 #include <core/result.h>
 #include <mesh/tet_mesh.h>
-#include <pipeline/method.h>
+#include <pipeline/methods/method.h>
 #include <pipeline/pipeline.h>
 #include <project/opaque_geometry.h>
 #include <project/splat/splat_renderer.h>

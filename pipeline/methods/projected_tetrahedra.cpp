@@ -1,7 +1,6 @@
-#include <core/parallel.h>
 #include <core/stopwatch.h>
 #include <pipeline/flow_volume_render.h>
-#include <pipeline/projected_tetrahedra.h>
+#include <pipeline/methods/projected_tetrahedra.h>
 #include <pipeline/scene_volumes.h>
 #include <project/cpu_renderer.h>
 #include <project/reference_raycaster.h>
@@ -62,8 +61,6 @@ Result<RenderResult> render_flow_volume(Pipeline& pipeline, const Scene& scene,
     result.stats.set("particles_inserted", fv->particles_inserted);
     result.stats.set("particles_stopped", fv->particles_stopped);
     result.stats.set("unresolved_edges", fv->unresolved_edges);
-    result.stats.set("width", scene.width);
-    result.stats.set("height", scene.height);
     result.flow_volume = std::move(fv);
     return result;
 }
@@ -114,8 +111,6 @@ Result<RenderResult> render_reference_picture(Pipeline& pipeline, const Scene& s
     }
     result.stats.set("raster_ms", ms_since(start));
     result.stats.set("integrator", "reference");
-    result.stats.set("width", scene.width);
-    result.stats.set("height", scene.height);
     return result;
 }
 
@@ -162,9 +157,6 @@ Result<RenderResult> render_merged(Pipeline& pipeline, const Scene& scene,
     stats.set("compositing", "merged");
     stats.set("merged_because", why);
     stats.set("integrator", std::string(integrator_name(options.integrator)));
-    stats.set("threads", thread_count());
-    stats.set("width", scene.width);
-    stats.set("height", scene.height);
     return result;
 }
 
@@ -173,14 +165,13 @@ class ProjectedTetrahedra final : public RenderMethod {
     std::string_view name() const override { return kDefaultMethod; }
     bool draws_transparent() const override { return true; }
 
+    const MethodKeys& keys() const override {
+        static const MethodKeys none{};
+        return none;
+    }
+
     Status check(const Scene& scene, const RenderOptions& options) const override {
-        if (scene.method) {
-            for (const auto& [key, value] : scene.method->options) {
-                return method_option_error(scene, key,
-                                           "unknown key for projected-tetrahedra (it takes "
-                                           "name, and ignores repetitions and seed)");
-            }
-        }
+        TR_TRY_STATUS(check_method_keys(scene, name(), keys()));
         if (scene.flow_volume && scene.volumes.size() > 1) {
             return make_error(ErrorCode::kUnsupported,
                               "$.flow_volume: a flow volume grows through one mesh; this scene "
@@ -209,11 +200,6 @@ class ProjectedTetrahedra final : public RenderMethod {
         if (scene.flow_volume) return render_flow_volume(pipeline, scene, options);
         if (options.reference) return render_reference_picture(pipeline, scene);
         std::vector<std::string> notes;
-        if (scene.method && (scene.method->repetitions || scene.method->seed)) {
-            notes.push_back(
-                "repetitions and seed apply to the stochastic methods: projected tetrahedra "
-                "ignore them");
-        }
         if (scene.volumes.size() > 1) {
             return render_merged(pipeline, scene, options, std::move(notes), "several volumes");
         }
@@ -282,9 +268,6 @@ class ProjectedTetrahedra final : public RenderMethod {
         stats.set("cells_by_fallback", sort_stats.by_fallback);
         stats.set("cells_in_cycles", sort_stats.cells_in_cycles);
         stats.set("integrator", std::string(integrator_name(options.integrator)));
-        stats.set("threads", thread_count());
-        stats.set("width", scene.width);
-        stats.set("height", scene.height);
         return result;
     }
 };

@@ -9,7 +9,7 @@
 //   pbvr-image:  repetitions (64), seed (1), depth ("inverse-cdf", "entry", "middle", "exit",
 //                "random"), stratified (true)
 
-#include <pipeline/method.h>
+#include <pipeline/methods/method.h>
 
 #include <memory>
 

@@ -5,7 +5,7 @@
 // tets (one colour: no sort); or, with RenderOptions::reference, the brute-force reference ray
 // caster.
 
-#include <pipeline/method.h>
+#include <pipeline/methods/method.h>
 
 #include <memory>
 

@@ -1,13 +1,15 @@
 #pragma once
 // Rendering methods as back-ends of the pipeline: each is one class behind this interface,
 // chosen by the scene's `method.name` (../shared/spec/scene.md, section "Method"). Adding a
-// method is one new file and one line in method_registry.cpp; no other method changes.
+// method is one new file in pipeline/methods/ and one line in method_registry.cpp; no other
+// method changes. Its keys are a table (method_keys.h) that check(), render(), the errors and
+// docs/scene-file.md all read.
 
 #include <core/result.h>
+#include <pipeline/methods/method_keys.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/scene.h>
 
-#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -21,9 +23,12 @@ class RenderMethod {
     // The name scenes give it ("projected-tetrahedra", "pbvr-object", ...).
     virtual std::string_view name() const = 0;
 
-    // Checks, before anything is loaded, the scene's method keys (its own options, repetitions,
-    // seed) and what else of the scene this method can draw (several volumes, opaque geometry,
-    // a flow volume). Errors name the JSON path ("$.method.depth: ...").
+    // Its scene keys, each once, with type, range, default and doc line.
+    virtual const MethodKeys& keys() const = 0;
+
+    // Checks, before anything is loaded, the scene's method keys against keys() and what
+    // else of the scene this method can draw (several volumes, opaque geometry, a flow volume,
+    // rules between keys). Errors name the JSON path ("$.method.depth: ...").
     virtual Status check(const Scene& scene, const RenderOptions& options) const = 0;
 
     // Whether it draws RenderOptions::transparent (premultiplied RGBA over transparent black).
@@ -41,15 +46,7 @@ const RenderMethod* find_method(std::string_view name);
 // Every method name the spec knows, in its order (those not built yet answer with an error).
 std::vector<std::string> method_names();
 
-// An error for a method option at `$.method.<key>` of the scene (its file in `where`).
-Error method_option_error(const Scene& scene, const std::string& key, const std::string& message);
-
-// The method's own option `key`, if the scene gives it.
-const MethodOption* option(const Scene& scene, const std::string& key);
-
-// An error unless every option of the scene's method is among `keys` (or name, repetitions,
-// seed), listing those `name` takes.
-Status only_keys(const Scene& scene, std::string_view name,
-                 std::initializer_list<std::string_view> keys);
+// Every method's keys as docs/scene-file.md shows them, in method_names() order.
+std::string methods_markdown();
 
 }  // namespace tr
