@@ -150,9 +150,14 @@ std::vector<PointId> find_coincident_points(const std::vector<Vec3>& points,
     return representative;
 }
 
-Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeOptions& options,
-                               TetrahedralizeReport* report_out) {
-    TetrahedralizeReport report;
+namespace {
+
+// The mesh's arrays agree, and every cell is a supported volume cell with its node count, nodes
+// in range and finite corners; returns which cells to keep (unsupported ones skipped when the
+// options say so), counting the input cells in `report`.
+Result<std::vector<std::uint8_t>> validate_cells(const UnstructuredMesh& in,
+                                                 const TetrahedralizeOptions& options,
+                                                 TetrahedralizeReport& report) {
     const std::size_t num_cells = in.num_cells();
     const std::size_t num_points = in.num_points();
     if (num_cells == 0) {
@@ -169,8 +174,6 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
         in.offsets.back() != static_cast<std::int64_t>(in.connectivity.size())) {
         return make_error(ErrorCode::kInvalidMesh, "cell offsets do not match the connectivity");
     }
-
-    // Validate every cell once; collect the kept ones.
     report_progress(options.progress, "tetrahedralizing", 0.0);
     std::vector<std::uint8_t> keep(num_cells, 1);
     for (std::size_t c = 0; c < num_cells; ++c) {
@@ -220,9 +223,24 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
         }
         if (is_quadratic(type)) ++report.num_quadratic_cells;
     }
+    return keep;
+}
 
-    // Merge coincident points, then keep only points used as corners (compacted, in order).
-    std::vector<PointId> representative;
+// The points the tets use: coincident points merged, then only those kept cells use as corners,
+// compacted in order; with each one's rank in the lexicographic order of coordinates.
+struct KeptPoints {
+    std::vector<PointId> representative;  // input point -> the input point it merged into
+    std::vector<PointId> new_index;       // input point -> kept point (kNoCell: not kept)
+    std::vector<PointId> kept;            // kept point -> input point
+    std::vector<Vec3> points;             // kept points' coordinates
+    std::vector<PointId> rank;            // kept point -> place in the lexicographic order
+};
+
+KeptPoints keep_points(const UnstructuredMesh& in, const std::vector<std::uint8_t>& keep,
+                       const TetrahedralizeOptions& options, TetrahedralizeReport& report) {
+    const std::size_t num_points = in.num_points();
+    KeptPoints out;
+    std::vector<PointId>& representative = out.representative;
     std::vector<PointId> order;  // all points in lexicographic order, when merging exactly
     if (options.merge_points && options.merge_tolerance <= 0) {
         order = lexicographic_order(in.points);
@@ -234,32 +252,32 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
         representative.resize(num_points);
         std::iota(representative.begin(), representative.end(), PointId{0});
     }
-    std::vector<PointId> new_index(num_points, kNoCell);
-    for (std::size_t c = 0; c < num_cells; ++c) {
+    std::vector<PointId>& new_index = out.new_index;
+    new_index.assign(num_points, kNoCell);
+    for (std::size_t c = 0; c < in.num_cells(); ++c) {
         if (!keep[c]) continue;
         const int corners = cell_corner_count(in.types[c]);
         for (int k = 0; k < corners; ++k) {
             new_index[representative[in.connectivity[in.offsets[c] + k]]] = 0;
         }
     }
-    std::vector<PointId> kept_points;
     for (std::size_t p = 0; p < num_points; ++p) {
         if (new_index[p] == 0) {
-            new_index[p] = static_cast<PointId>(kept_points.size());
-            kept_points.push_back(static_cast<PointId>(p));
+            new_index[p] = static_cast<PointId>(out.kept.size());
+            out.kept.push_back(static_cast<PointId>(p));
         }
     }
     for (std::size_t p = 0; p < num_points; ++p) {
         if (representative[p] != p) ++report.num_merged_points;
     }
-    std::vector<Vec3> points(kept_points.size());
-    for (std::size_t i = 0; i < kept_points.size(); ++i) points[i] = in.points[kept_points[i]];
+    out.points.resize(out.kept.size());
+    for (std::size_t i = 0; i < out.kept.size(); ++i) out.points[i] = in.points[out.kept[i]];
     // Each kept point's place in the lexicographic order of coordinates (x, then y, then z;
     // index on ties, which only unmerged coincident points can have): the split compares
     // these ranks, never the ids, so it does not depend on the numbering. Merged exactly, the
     // kept points are the representatives, met in `order` as their groups are.
     if (order.empty()) {
-        order = lexicographic_order(points);
+        order = lexicographic_order(out.points);
     } else {
         std::size_t k = 0;
         for (const PointId p : order) {
@@ -267,30 +285,161 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
         }
         order.resize(k);
     }
-    std::vector<PointId> rank(points.size());
-    for (std::size_t i = 0; i < order.size(); ++i) rank[order[i]] = static_cast<PointId>(i);
+    out.rank.resize(out.points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) out.rank[order[i]] = static_cast<PointId>(i);
+    return out;
+}
 
-    // Split each cell by the pulling triangulation (see the header).
-    std::vector<Tet> tets;
-    std::vector<CellId> sources;
-    tets.reserve(num_cells * 5);
-    sources.reserve(num_cells * 5);
-    const double tolerance = options.tet_options.degenerate_tolerance;
-    auto degenerate = [&](const Tet& t) {
+// One cell split by the pulling triangulation (see the header): cones from an apex over the
+// cell's boundary triangles that do not contain it.
+class CellSplitter {
+  public:
+    CellSplitter(const std::vector<Vec3>& points, const std::vector<PointId>& rank,
+                 double tolerance)
+        : points_(points), rank_(rank), tolerance_(tolerance) {}
+
+    struct Split {
+        double volume = 0;  // the good tets' summed signed volume (times 6)
+        std::size_t good = 0;
+    };
+
+    // Splits the cell of `type` with these corners (kept points) and their ranks; its tets are
+    // then tets(), the degenerate ones marked with t[0] = kNoCell. A tangled cell is counted in
+    // `report`.
+    Split split(CellType type, const std::vector<PointId>& corner,
+                const std::array<PointId, 12>& corner_rank, int corners,
+                TetrahedralizeReport& report) {
+        type_ = type;
+        corner_ = &corner;
+        corner_rank_ = &corner_rank;
+        if (type == CellType::kTetra) {
+            cell_tets_.assign(1, {corner[0], corner[1], corner[2], corner[3]});
+            Split one;
+            one.good = degenerate(cell_tets_[0]) ? 0 : 1;
+            if (one.good) {
+                one.volume = orient3d(points_[corner[0]], points_[corner[1]], points_[corner[2]],
+                                      points_[corner[3]]);
+            }
+            return one;
+        }
+        // The lexicographically smallest corner first, the others in that order after it:
+        // a cell that is not convex (twisted, crushed) may need another corner to see all
+        // its faces. The faces' triangles stay the same whichever corner is the apex.
+        int smallest = 0;
+        for (int k = 1; k < corners; ++k) {
+            if (corner_rank[k] < corner_rank[smallest]) smallest = k;
+        }
+        Cone split = cone(corner[smallest], true);
+        if (!split.consistent) {
+            std::vector<PointId> apexes(corner.begin(), corner.begin() + corners);
+            std::sort(apexes.begin(), apexes.end(),
+                      [&](PointId a, PointId b) { return rank_[a] < rank_[b]; });
+            apexes.erase(std::unique(apexes.begin(), apexes.end()), apexes.end());
+            for (std::size_t a = 1; a < apexes.size() && !split.consistent; ++a) {
+                const Cone other = cone(apexes[a], false);
+                if (other.consistent && other.good > 0 && !other.cracks) split = other;
+            }
+            if (!split.consistent) {
+                split = cone(apexes[0], true);
+                ++report.num_tangled_cells;
+            }
+        }
+        return {split.volume, split.good};
+    }
+
+    const std::vector<Tet>& tets() const { return cell_tets_; }
+
+  private:
+    struct Cone {
+        double volume = 0;
+        std::size_t good = 0;
+        bool consistent = true;
+        bool cracks = false;
+    };
+
+    bool degenerate(const Tet& t) const {
         if (t[0] == t[1] || t[0] == t[2] || t[0] == t[3] || t[1] == t[2] || t[1] == t[3] ||
             t[2] == t[3]) {
             return true;
         }
-        const Vec3 &a = points[t[0]], &b = points[t[1]], &c = points[t[2]], &d = points[t[3]];
+        const Vec3 &a = points_[t[0]], &b = points_[t[1]], &c = points_[t[2]], &d = points_[t[3]];
         auto l2 = [](const Vec3& p, const Vec3& q) { return glm::dot(p - q, p - q); };
         const double l =
             std::sqrt(std::max({l2(a, b), l2(a, c), l2(a, d), l2(b, c), l2(b, d), l2(c, d)}));
-        return !(std::abs(orient3d(a, b, c, d)) > tolerance * l * l * l);
-    };
+        return !(std::abs(orient3d(a, b, c, d)) > tolerance_ * l * l * l);
+    }
+
+    // Cone from `apex` over the cell's boundary triangles that do not contain it, each face
+    // fanned from its smallest point whatever the apex (so the split stays conforming);
+    // returns the summed signed volume (times 6) and whether the good tets all have that
+    // sign. From the smallest corner, every triangle of a face through the apex contains
+    // it. From another corner, a face through the apex may have triangles that do not:
+    // their tets fill the face's bend, and when one is flat (a planar face) that corner
+    // cannot be the apex without opening a crack.
+    Cone cone(PointId apex, bool smallest) {
+        const std::vector<PointId>& corner = *corner_;
+        const std::array<PointId, 12>& corner_rank = *corner_rank_;
+        cell_tets_.clear();
+        tet_on_apex_face_.clear();
+        for (const std::vector<int>& face : faces_of(type_)) {
+            bool has_apex = false;
+            for (int v : face) has_apex = has_apex || corner[v] == apex;
+            if (has_apex && smallest) continue;  // fanned from the apex: nothing to cone
+            const int n = static_cast<int>(face.size());
+            int start = 0;
+            for (int i = 1; i < n; ++i) {
+                if (corner_rank[face[i]] < corner_rank[face[start]]) start = i;
+            }
+            const PointId s = corner[face[start]];
+            if (has_apex && s == apex) continue;  // the whole fan contains the apex
+            for (int i = 1; i + 1 < n; ++i) {
+                const PointId b = corner[face[(start + i) % n]];
+                const PointId d = corner[face[(start + i + 1) % n]];
+                if (has_apex && (b == apex || d == apex)) continue;
+                // (s, b, d) is outward; the apex is behind it: (s, d, b, apex) is positive.
+                cell_tets_.push_back({s, d, b, apex});
+                tet_on_apex_face_.push_back(has_apex && s != b && s != d && b != d);
+            }
+        }
+        Cone result;
+        int signs = 0;
+        for (std::size_t i = 0; i < cell_tets_.size(); ++i) {
+            Tet& t = cell_tets_[i];
+            if (degenerate(t)) {
+                t[0] = kNoCell;
+                result.cracks = result.cracks || tet_on_apex_face_[i];
+                continue;
+            }
+            const double v = orient3d(points_[t[0]], points_[t[1]], points_[t[2]], points_[t[3]]);
+            result.volume += v;
+            signs |= v > 0 ? 1 : 2;
+            ++result.good;
+        }
+        result.consistent = signs != 3;
+        return result;
+    }
+
+    const std::vector<Vec3>& points_;
+    const std::vector<PointId>& rank_;
+    double tolerance_;
+    CellType type_ = CellType::kTetra;
+    const std::vector<PointId>* corner_ = nullptr;
+    const std::array<PointId, 12>* corner_rank_ = nullptr;
+    std::vector<Tet> cell_tets_;
+    std::vector<std::uint8_t> tet_on_apex_face_;  // per cell tet: from a face through the apex
+};
+
+// Every kept cell split into tets, each with its source cell.
+void split_cells(const UnstructuredMesh& in, const std::vector<std::uint8_t>& keep,
+                 const KeptPoints& kept, const TetrahedralizeOptions& options,
+                 TetrahedralizeReport& report, std::vector<Tet>& tets,
+                 std::vector<CellId>& sources) {
+    const std::size_t num_cells = in.num_cells();
+    tets.reserve(num_cells * 5);
+    sources.reserve(num_cells * 5);
+    CellSplitter splitter(kept.points, kept.rank, options.tet_options.degenerate_tolerance);
     std::vector<PointId> corner(12);
     std::array<PointId, 12> corner_rank{};
-    std::vector<Tet> cell_tets;
-    std::vector<std::uint8_t> tet_on_apex_face;  // per cell tet: from a face through the apex
     const std::size_t progress_step = std::max<std::size_t>(num_cells / 100, 1);
     for (std::size_t c = 0; c < num_cells; ++c) {
         if (c % progress_step == 0) {
@@ -301,139 +450,62 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
         CellType type = linear_type(in.types[c]);
         const int corners = cell_corner_count(type);
         const std::int64_t* nodes = in.connectivity.data() + in.offsets[c];
-        for (int k = 0; k < corners; ++k) corner[k] = new_index[representative[nodes[k]]];
+        for (int k = 0; k < corners; ++k) {
+            corner[k] = kept.new_index[kept.representative[nodes[k]]];
+        }
         if (type == CellType::kVoxel) {
             corner = {corner[0], corner[1], corner[3], corner[2],
                       corner[4], corner[5], corner[7], corner[6]};
             type = CellType::kHexahedron;
         }
-        for (int k = 0; k < corners; ++k) corner_rank[k] = rank[corner[k]];
-        // Cone from `apex` over the cell's boundary triangles that do not contain it, each face
-        // fanned from its smallest point whatever the apex (so the split stays conforming);
-        // returns the summed signed volume (times 6) and whether the good tets all have that
-        // sign. From the smallest corner, every triangle of a face through the apex contains
-        // it. From another corner, a face through the apex may have triangles that do not:
-        // their tets fill the face's bend, and when one is flat (a planar face) that corner
-        // cannot be the apex without opening a crack.
-        struct Cone {
-            double volume = 0;
-            std::size_t good = 0;
-            bool consistent = true;
-            bool cracks = false;
-        };
-        auto cone = [&](PointId apex, bool smallest) {
-            cell_tets.clear();
-            tet_on_apex_face.clear();
-            for (const std::vector<int>& face : faces_of(type)) {
-                bool has_apex = false;
-                for (int v : face) has_apex = has_apex || corner[v] == apex;
-                if (has_apex && smallest) continue;  // fanned from the apex: nothing to cone
-                const int n = static_cast<int>(face.size());
-                int start = 0;
-                for (int i = 1; i < n; ++i) {
-                    if (corner_rank[face[i]] < corner_rank[face[start]]) start = i;
-                }
-                const PointId s = corner[face[start]];
-                if (has_apex && s == apex) continue;  // the whole fan contains the apex
-                for (int i = 1; i + 1 < n; ++i) {
-                    const PointId b = corner[face[(start + i) % n]];
-                    const PointId d = corner[face[(start + i + 1) % n]];
-                    if (has_apex && (b == apex || d == apex)) continue;
-                    // (s, b, d) is outward; the apex is behind it: (s, d, b, apex) is positive.
-                    cell_tets.push_back({s, d, b, apex});
-                    tet_on_apex_face.push_back(has_apex && s != b && s != d && b != d);
-                }
-            }
-            Cone result;
-            int signs = 0;
-            for (std::size_t i = 0; i < cell_tets.size(); ++i) {
-                Tet& t = cell_tets[i];
-                if (degenerate(t)) {
-                    t[0] = kNoCell;
-                    result.cracks = result.cracks || tet_on_apex_face[i];
-                    continue;
-                }
-                const double v = orient3d(points[t[0]], points[t[1]], points[t[2]], points[t[3]]);
-                result.volume += v;
-                signs |= v > 0 ? 1 : 2;
-                ++result.good;
-            }
-            result.consistent = signs != 3;
-            return result;
-        };
-        Cone split;
-        if (type == CellType::kTetra) {
-            cell_tets.assign(1, {corner[0], corner[1], corner[2], corner[3]});
-            split.good = degenerate(cell_tets[0]) ? 0 : 1;
-            if (split.good) {
-                split.volume = orient3d(points[corner[0]], points[corner[1]], points[corner[2]],
-                                        points[corner[3]]);
-            }
-        } else {
-            // The lexicographically smallest corner first, the others in that order after it:
-            // a cell that is not convex (twisted, crushed) may need another corner to see all
-            // its faces. The faces' triangles stay the same whichever corner is the apex.
-            int smallest = 0;
-            for (int k = 1; k < corners; ++k) {
-                if (corner_rank[k] < corner_rank[smallest]) smallest = k;
-            }
-            split = cone(corner[smallest], true);
-            if (!split.consistent) {
-                std::vector<PointId> apexes(corner.begin(), corner.begin() + corners);
-                std::sort(apexes.begin(), apexes.end(),
-                          [&](PointId a, PointId b) { return rank[a] < rank[b]; });
-                apexes.erase(std::unique(apexes.begin(), apexes.end()), apexes.end());
-                for (std::size_t a = 1; a < apexes.size() && !split.consistent; ++a) {
-                    const Cone other = cone(apexes[a], false);
-                    if (other.consistent && other.good > 0 && !other.cracks) split = other;
-                }
-                if (!split.consistent) {
-                    split = cone(apexes[0], true);
-                    ++report.num_tangled_cells;
-                }
-            }
-        }
-        const double cell_volume = split.volume;
-        const std::size_t good = split.good;
-        if (good == 0) {
+        for (int k = 0; k < corners; ++k) corner_rank[k] = kept.rank[corner[k]];
+        const CellSplitter::Split split =
+            splitter.split(type, corner, corner_rank, corners, report);
+        if (split.good == 0) {
             ++report.num_degenerate_cells;
             continue;
         }
-        report.num_degenerate_tets += cell_tets.size() - good;
-        if (cell_volume < 0) ++report.num_inverted_cells;
-        for (const Tet& t : cell_tets) {
+        report.num_degenerate_tets += splitter.tets().size() - split.good;
+        if (split.volume < 0) ++report.num_inverted_cells;
+        for (const Tet& t : splitter.tets()) {
             if (t[0] == kNoCell) continue;
             tets.push_back(t);
             sources.push_back(static_cast<CellId>(c));
         }
     }
+}
 
-    TetRepairReport repair;
-    auto mesh_or = TetMesh::create(std::move(points), std::move(tets), std::move(sources),
-                                   options.tet_options, &repair);
-    if (!mesh_or.ok()) return mesh_or.error();
-    TetMesh mesh = std::move(mesh_or).value();
+// A copy of `f` with `tuples` tuples, tuple i taken from tuple source(i) of `f`.
+template <class Source>
+Field gathered_field(const Field& f, std::size_t tuples, Source source) {
+    Field out = f;
+    const auto nc = static_cast<std::size_t>(f.num_components);
+    std::visit(
+        [&](auto& dst) {
+            const auto& src = std::get<std::decay_t<decltype(dst)>>(f.values);
+            dst.resize(tuples * nc);
+            for (std::size_t i = 0; i < tuples; ++i) {
+                const std::size_t s = source(i);
+                for (std::size_t k = 0; k < nc; ++k) dst[i * nc + k] = src[s * nc + k];
+            }
+        },
+        out.values);
+    return out;
+}
 
-    // Fields: point fields follow the kept points; cell fields go to every tet of their cell.
+// Point fields follow the kept points; cell fields go to every tet of their cell.
+Status carry_fields(const UnstructuredMesh& in, const std::vector<PointId>& kept_points,
+                    TetMesh& mesh) {
+    const std::size_t num_points = in.num_points();
+    const std::size_t num_cells = in.num_cells();
     for (const Field& f : in.point_fields) {
         if (f.num_tuples() != num_points) {
             return make_error(ErrorCode::kInvalidMesh,
                               "point field '" + f.name + "' has " + std::to_string(f.num_tuples()) +
                                   " tuples for " + std::to_string(num_points) + " points");
         }
-        Field out = f;
-        const auto nc = static_cast<std::size_t>(f.num_components);
-        std::visit(
-            [&](auto& dst) {
-                const auto& src = std::get<std::decay_t<decltype(dst)>>(f.values);
-                dst.resize(kept_points.size() * nc);
-                for (std::size_t i = 0; i < kept_points.size(); ++i) {
-                    for (std::size_t k = 0; k < nc; ++k)
-                        dst[i * nc + k] = src[kept_points[i] * nc + k];
-                }
-            },
-            out.values);
-        TR_TRY_STATUS(mesh.add_point_field(std::move(out)));
+        TR_TRY_STATUS(mesh.add_point_field(
+            gathered_field(f, kept_points.size(), [&](std::size_t i) { return kept_points[i]; })));
     }
     for (const Field& f : in.cell_fields) {
         if (f.num_tuples() != num_cells) {
@@ -441,20 +513,33 @@ Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeO
                               "cell field '" + f.name + "' has " + std::to_string(f.num_tuples()) +
                                   " tuples for " + std::to_string(num_cells) + " cells");
         }
-        Field out = f;
-        const auto nc = static_cast<std::size_t>(f.num_components);
-        std::visit(
-            [&](auto& dst) {
-                const auto& src = std::get<std::decay_t<decltype(dst)>>(f.values);
-                dst.resize(mesh.num_tets() * nc);
-                for (std::size_t t = 0; t < mesh.num_tets(); ++t) {
-                    const std::size_t s = mesh.source_cell(static_cast<CellId>(t));
-                    for (std::size_t k = 0; k < nc; ++k) dst[t * nc + k] = src[s * nc + k];
-                }
-            },
-            out.values);
-        TR_TRY_STATUS(mesh.add_cell_field(std::move(out)));
+        TR_TRY_STATUS(mesh.add_cell_field(gathered_field(f, mesh.num_tets(), [&](std::size_t t) {
+            return static_cast<std::size_t>(mesh.source_cell(static_cast<CellId>(t)));
+        })));
     }
+    return {};
+}
+
+}  // namespace
+
+Result<TetMesh> tetrahedralize(const UnstructuredMesh& in, const TetrahedralizeOptions& options,
+                               TetrahedralizeReport* report_out) {
+    TetrahedralizeReport report;
+    // Validate every cell once; collect the kept ones.
+    TR_TRY(const std::vector<std::uint8_t> keep, validate_cells(in, options, report));
+    // Merge coincident points, then keep only points used as corners (compacted, in order).
+    KeptPoints kept = keep_points(in, keep, options, report);
+    // Split each cell by the pulling triangulation (see the header).
+    std::vector<Tet> tets;
+    std::vector<CellId> sources;
+    split_cells(in, keep, kept, options, report, tets, sources);
+
+    TetRepairReport repair;
+    auto mesh_or = TetMesh::create(std::move(kept.points), std::move(tets), std::move(sources),
+                                   options.tet_options, &repair);
+    if (!mesh_or.ok()) return mesh_or.error();
+    TetMesh mesh = std::move(mesh_or).value();
+    TR_TRY_STATUS(carry_fields(in, kept.kept, mesh));
     report.num_tets = mesh.num_tets();
     report_progress(options.progress, "tetrahedralizing", 1.0);
     if (report_out) *report_out = report;

@@ -298,26 +298,19 @@ double lattice_spacing(std::span<const Vec3> points) {
     return std::pow(measure / cells, 1.0 / dims);
 }
 
-Image render_splats(const SplatInputs& in, SplatStats* stats) {
-    const auto start = std::chrono::steady_clock::now();
-    TR_CHECK(in.tf != nullptr && in.footprint != nullptr && in.camera != nullptr);
-    TR_CHECK_EQ(in.scalar.size(), in.points.size());
-    TR_CHECK(in.spacing > 0);
-    if (!in.radius.empty()) TR_CHECK_EQ(in.radius.size(), in.points.size());
+namespace {
+
+// Every point's splat: `splats[i]` is point i's where `drawn` lists i (a non-zero extinction, in
+// view), in the points' order.
+struct SplatSet {
+    std::unique_ptr<Splat[]> splats;
+    std::vector<std::uint32_t> drawn;
+};
+
+SplatSet make_splats(const SplatInputs& in, double support, double per_unit) {
     const CameraFrame& camera = *in.camera;
     const int w = camera.width(), h = camera.height();
-    if (in.opaque_color) {
-        TR_CHECK_EQ(in.opaque_color->width, w);
-        TR_CHECK_EQ(in.opaque_color->height, h);
-    }
-    if (in.opaque_depth) TR_CHECK_EQ(in.opaque_depth->size(), static_cast<std::size_t>(w) * h);
     const bool orthographic = camera.orthographic();
-    const double support = in.footprint->support();
-    // Pixels per world unit at unit depth (perspective) or anywhere (orthographic).
-    const double per_unit =
-        std::abs(camera.project(camera.eye() + camera.forward()).y -
-                 camera.project(camera.eye() + camera.forward() + camera.up()).y);
-
     // Point i as a splat of extinction kappa (> 0), but its colour; false when it is not in view.
     auto make_splat = [&](std::size_t i, double kappa, Splat& splat) {
         const Vec3& p = in.points[i];
@@ -348,13 +341,13 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
                       0};
         return splat.x0 <= splat.x1 && splat.y0 <= splat.y1;
     };
-    // Each point's splat (concurrently, in blocks), in the points' order; `drawn` lists those
-    // with a non-zero extinction in view.
+    // Concurrently, in blocks. Uninitialised (default-initialised): only the drawn points' are
+    // written and read, and the pages are first touched by the threads that fill them.
     constexpr std::size_t kBlock = 16384;
     const std::size_t n = in.points.size();
-    // Uninitialised (default-initialised): only the drawn points' are written and read, and
-    // the pages are first touched by the threads that fill them.
-    const std::unique_ptr<Splat[]> splats(new Splat[n]);
+    SplatSet set;
+    set.splats.reset(new Splat[n]);
+    Splat* const splats = set.splats.get();
     std::vector<std::vector<std::uint32_t>> drawn_blocks((n + kBlock - 1) / kBlock);
     parallel_for(0, drawn_blocks.size(), 1, [&](std::size_t block) {
         for (std::size_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
@@ -364,217 +357,304 @@ Image render_splats(const SplatInputs& in, SplatStats* stats) {
             drawn_blocks[block].push_back(static_cast<std::uint32_t>(i));
         }
     });
-    std::vector<std::uint32_t> drawn;
-    for (const auto& block : drawn_blocks) drawn.insert(drawn.end(), block.begin(), block.end());
-    // Back to front (order: positions in `drawn`).
-    const bool sheets = in.compositing == SplatCompositing::kSheetBuffer;
-    std::vector<std::uint32_t> order;
-    std::vector<std::int64_t> sheet;  // sheet buffer: each drawn point's sheet
-    int axis = -1;
-    std::size_t sheet_count = 0;
-    if (sheets && !drawn.empty()) {
-        // The axis most parallel to the view, and the sheets of thickness `spacing` across it.
-        Vec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-        for (std::uint32_t i : drawn)
-            lo = glm::min(lo, in.points[i]), hi = glm::max(hi, in.points[i]);
-        const Vec3 view = orthographic ? camera.forward() : 0.5 * (lo + hi) - camera.eye();
-        axis = 0;
-        for (int k = 1; k < 3; ++k) {
-            if (std::abs(view[k]) > std::abs(view[axis])) axis = k;
-        }
-        sheet.resize(drawn.size());
-        for (std::size_t k = 0; k < drawn.size(); ++k) {
-            sheet[k] = std::llround((in.points[drawn[k]][axis] - lo[axis]) / in.spacing);
-        }
-        // Back to front: orthographic, further along the view; perspective, further from the eye
-        // across the sheets (ties, sheets either side of the eye, by index). Within a sheet the
-        // order does not matter (its splats are summed): the points' order.
-        const double sign = view[axis] < 0 ? -1.0 : 1.0;
-        auto key = [&](std::int64_t index) {
-            const double plane = lo[axis] + static_cast<double>(index) * in.spacing;
-            return orthographic ? sign * plane : std::abs(plane - camera.eye()[axis]);
-        };
-        auto further = [&](std::int64_t a, std::int64_t b) {
-            const double ka = key(a), kb = key(b);
-            return ka != kb ? ka > kb : a > b;
-        };
-        order = order_by_sheet(sheet, further, &sheet_count);
+    for (const auto& block : drawn_blocks) {
+        set.drawn.insert(set.drawn.end(), block.begin(), block.end());
     }
-    // The points drawn: with the sheet buffer back to front, each splat's sheet as its place
-    // among the sheets; per splat, in the points' order (each tile sorts its own by depth).
-    std::vector<std::uint32_t> sequence = drawn;
-    for (std::size_t k = 0; sheets && k < drawn.size(); ++k) sequence[k] = drawn[order[k]];
-    for (std::size_t k = 1; sheets && k < sequence.size(); ++k) {
-        splats[sequence[k]].sheet =
-            splats[sequence[k - 1]].sheet + (sheet[order[k]] != sheet[order[k - 1]] ? 1 : 0);
+    return set;
+}
+
+// The order the drawn points are drawn in: with the sheet buffer back to front, each splat's
+// sheet numbered by its place among the sheets; per splat, the points' order (each tile sorts
+// its own by depth).
+struct DrawOrder {
+    std::vector<std::uint32_t> sequence;
+    int axis = -1;                // the sheets' axis (sheet buffer)
+    std::size_t sheet_count = 0;  // sheets holding a splat
+};
+
+DrawOrder draw_order(const SplatInputs& in, SplatSet& set, bool sheets) {
+    const CameraFrame& camera = *in.camera;
+    const bool orthographic = camera.orthographic();
+    const std::vector<std::uint32_t>& drawn = set.drawn;
+    DrawOrder out;
+    out.sequence = drawn;
+    if (!sheets || drawn.empty()) return out;
+    // The axis most parallel to the view, and the sheets of thickness `spacing` across it.
+    Vec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (std::uint32_t i : drawn) lo = glm::min(lo, in.points[i]), hi = glm::max(hi, in.points[i]);
+    const Vec3 view = orthographic ? camera.forward() : 0.5 * (lo + hi) - camera.eye();
+    int axis = 0;
+    for (int k = 1; k < 3; ++k) {
+        if (std::abs(view[k]) > std::abs(view[axis])) axis = k;
     }
-    // Binned into tiles in that order: tile t's splats are binned[bin_start[t], bin_start[t + 1]).
-    const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
-    const std::size_t tiles = static_cast<std::size_t>(tiles_x) * tiles_y;
+    std::vector<std::int64_t> sheet(drawn.size());  // each drawn point's sheet
+    for (std::size_t k = 0; k < drawn.size(); ++k) {
+        sheet[k] = std::llround((in.points[drawn[k]][axis] - lo[axis]) / in.spacing);
+    }
+    // Back to front: orthographic, further along the view; perspective, further from the eye
+    // across the sheets (ties, sheets either side of the eye, by index). Within a sheet the
+    // order does not matter (its splats are summed): the points' order.
+    const double sign = view[axis] < 0 ? -1.0 : 1.0;
+    auto key = [&](std::int64_t index) {
+        const double plane = lo[axis] + static_cast<double>(index) * in.spacing;
+        return orthographic ? sign * plane : std::abs(plane - camera.eye()[axis]);
+    };
+    auto further = [&](std::int64_t a, std::int64_t b) {
+        const double ka = key(a), kb = key(b);
+        return ka != kb ? ka > kb : a > b;
+    };
+    const std::vector<std::uint32_t> order = order_by_sheet(sheet, further, &out.sheet_count);
+    out.axis = axis;
+    for (std::size_t k = 0; k < drawn.size(); ++k) out.sequence[k] = drawn[order[k]];
+    for (std::size_t k = 1; k < out.sequence.size(); ++k) {
+        set.splats[out.sequence[k]].sheet = set.splats[out.sequence[k - 1]].sheet +
+                                            (sheet[order[k]] != sheet[order[k - 1]] ? 1 : 0);
+    }
+    return out;
+}
+
+// The splats binned into screen tiles in drawing order: tile t's are
+// binned[start[t], start[t + 1]).
+struct TileBins {
+    int tiles_x = 0;
+    std::size_t tiles = 0;
+    std::vector<std::size_t> start;
+    std::vector<std::uint32_t> binned;
+};
+
+TileBins bin_into_tiles(const SplatSet& set, const std::vector<std::uint32_t>& sequence, int w,
+                        int h, std::size_t num_points) {
+    TileBins bins;
+    bins.tiles_x = (w + kTile - 1) / kTile;
+    const int tiles_y = (h + kTile - 1) / kTile;
+    bins.tiles = static_cast<std::size_t>(bins.tiles_x) * tiles_y;
     // Each drawn splat's tiles, inclusive (read in the order above: a small array).
     struct TileSpan {
         int x0, y0, x1, y1;
     };
-    const std::unique_ptr<TileSpan[]> tile_span(new TileSpan[n]);
-    for (std::uint32_t i : drawn) {
-        const Splat& s = splats[i];
+    const std::unique_ptr<TileSpan[]> tile_span(new TileSpan[num_points]);
+    for (std::uint32_t i : set.drawn) {
+        const Splat& s = set.splats[i];
         tile_span[i] = {s.x0 / kTile, s.y0 / kTile, s.x1 / kTile, s.y1 / kTile};
     }
     auto for_each_tile = [&](std::uint32_t i, auto&& body) {
         const TileSpan& span = tile_span[i];
         for (int ty = span.y0; ty <= span.y1; ++ty) {
             for (int tx = span.x0; tx <= span.x1; ++tx) {
-                body(static_cast<std::size_t>(ty) * tiles_x + tx);
+                body(static_cast<std::size_t>(ty) * bins.tiles_x + tx);
             }
         }
     };
-    std::vector<std::size_t> bin_start(tiles + 1, 0);
-    for (std::uint32_t i : drawn) for_each_tile(i, [&](std::size_t t) { ++bin_start[t + 1]; });
-    std::partial_sum(bin_start.begin(), bin_start.end(), bin_start.begin());
-    std::vector<std::uint32_t> binned(bin_start.back());
-    {
-        std::vector<std::size_t> next(bin_start.begin(), bin_start.end() - 1);
-        for (std::uint32_t i : sequence) {
-            for_each_tile(i, [&](std::size_t t) { binned[next[t]++] = i; });
-        }
+    bins.start.assign(bins.tiles + 1, 0);
+    for (std::uint32_t i : set.drawn) {
+        for_each_tile(i, [&](std::size_t t) { ++bins.start[t + 1]; });
     }
+    std::partial_sum(bins.start.begin(), bins.start.end(), bins.start.begin());
+    bins.binned.resize(bins.start.back());
+    std::vector<std::size_t> next(bins.start.begin(), bins.start.end() - 1);
+    for (std::uint32_t i : sequence) {
+        for_each_tile(i, [&](std::size_t t) { bins.binned[next[t]++] = i; });
+    }
+    return bins;
+}
 
-    Image image(w, h, Vec3f(in.background));
-    if (in.opaque_color) image = *in.opaque_color;
-    const double support_sq = support * support;
+// What every tile's raster reads.
+struct TileRasterInputs {
+    const SplatInputs* in = nullptr;
+    const Splat* splats = nullptr;
+    TileBins* bins = nullptr;
+    Image* image = nullptr;
+    bool sheets = false;
+    double per_unit = 0;
+    double support_sq = 0;
+    const SplatStamps* stamps = nullptr;  // orthographic splats of one scale, or null
+    decltype(&raster_splat<false, false>) raster_ortho = nullptr;
+    splat_rows::FootprintTable table{};
+};
+
+// Draws the splats of one tile over its pixels of the image; returns the fragments drawn.
+std::size_t raster_tile(const TileRasterInputs& r, std::size_t tile) {
+    const SplatInputs& in = *r.in;
+    const CameraFrame& camera = *in.camera;
+    const bool orthographic = camera.orthographic();
+    const int w = camera.width(), h = camera.height();
+    const Splat* const splats = r.splats;
     const SplatFootprint& fp = *in.footprint;
     const double* const opaque = in.opaque_depth ? in.opaque_depth->data() : nullptr;
+    const int x0 = static_cast<int>(tile % r.bins->tiles_x) * kTile;
+    const int y0 = static_cast<int>(tile / r.bins->tiles_x) * kTile;
+    const int x1 = std::min(x0 + kTile, w) - 1, y1 = std::min(y0 + kTile, h) - 1;
+    if (r.bins->start[tile] == r.bins->start[tile + 1]) return 0;
+    // Perspective: the pixels' rays from the eye, their unit directions planar.
+    double dir_x[kTile * kTile], dir_y[kTile * kTile], dir_z[kTile * kTile];
+    for (int y = y0; !orthographic && y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+            const Vec3 d = camera.pixel_ray(x, y).direction;
+            const int k = (y - y0) * kTile + (x - x0);
+            dir_x[k] = d.x, dir_y[k] = d.y, dir_z[k] = d.z;
+        }
+    }
+    TileBuffers buffers;
+    auto pixel = [&](int x, int y) -> Vec3f& {
+        return r.image->pixels[static_cast<std::size_t>(y) * w + x];
+    };
+    for (int y = y0; y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+            const int local = tile_index(x - x0, y - y0);
+            const Vec3f& p = pixel(x, y);
+            buffers.r[local] = p.r, buffers.g[local] = p.g, buffers.b[local] = p.b;
+        }
+    }
+    std::size_t count = 0;
+    std::int64_t current = 0;
+    bool open = false;
+    // The sheet composited over the tile: alpha = 1 - e^-tau, colour sum(c tau) / tau alpha.
+    auto flush = [&] {
+        const int from = buffers.rows_from * kStride, to = buffers.rows_to * kStride;
+        if (from < to) {
+            splat_rows::composite_sheet(color_row(buffers, from),
+                                        {buffers.tau + from, buffers.tau_r + from,
+                                         buffers.tau_g + from, buffers.tau_b + from},
+                                        to - from);
+        }
+        buffers.rows_from = kTile, buffers.rows_to = 0;
+    };
+    // The tile's splats in order: per splat, sorted here by depth (their data now cached).
+    const std::span<std::uint32_t> bin(r.bins->binned.data() + r.bins->start[tile],
+                                       r.bins->start[tile + 1] - r.bins->start[tile]);
+    if (!r.sheets) {
+        std::vector<DepthEntry> entries(bin.size());
+        for (std::size_t k = 0; k < bin.size(); ++k) {
+            if (k + kPrefetch < bin.size()) __builtin_prefetch(&splats[bin[k + kPrefetch]]);
+            entries[k] = {splats[bin[k]].depth, bin[k]};
+        }
+        std::sort(entries.begin(), entries.end(), further_back);
+        for (std::size_t k = 0; k < bin.size(); ++k) bin[k] = entries[k].index;
+    }
+    for (std::size_t k = 0; k < bin.size(); ++k) {
+        // The tile's splats lie scattered through the array: fetched a few ahead.
+        if (k + kPrefetch < bin.size()) __builtin_prefetch(&splats[bin[k + kPrefetch]]);
+        const std::uint32_t i = bin[k];
+        const Splat& s = splats[i];
+        if (r.sheets) {
+            if (open && s.sheet != current) flush();
+            current = s.sheet, open = true;
+        }
+        const int ya = std::max(s.y0, y0), yb = std::min(s.y1, y1);
+        const int xa = std::max(s.x0, x0), xb = std::min(s.x1, x1);
+        const TileTarget target{xa, xb, ya, yb, x0, y0, &buffers, w, opaque};
+        if (orthographic) {
+            if (!(s.depth > 0)) continue;
+            count += r.raster_ortho(s, target, r.stamps, r.per_unit, fp);
+            continue;
+        }
+        const double kernel_h = s.h, reach_sq = r.support_sq * kernel_h * kernel_h;
+        const Vec3 v = in.points[s.point] - camera.eye();
+        if (!opaque) {
+            // Row by row, vectorised (project/splat/splat_rows.h).
+            float tau[kTile];
+            for (int y = ya; y <= yb; ++y) {
+                const int k = (y - y0) * kTile + (xa - x0), n = xb - xa + 1;
+                splat_rows::perspective_depths(tau, dir_x + k, dir_y + k, dir_z + k, n, v,
+                                               1.0 / (kernel_h * kernel_h), s.kappa_h, r.table);
+                if (r.sheets) {
+                    composite_row<true>(buffers, tile_index(xa - x0, y - y0), tau, n, s.color);
+                } else {
+                    composite_row<false>(buffers, tile_index(xa - x0, y - y0), tau, n, s.color);
+                }
+                count += static_cast<std::size_t>(n);
+            }
+            continue;
+        }
+        for (int y = ya; y <= yb; ++y) {
+            for (int x = xa; x <= xb; ++x) {
+                const int local = tile_index(x - x0, y - y0);
+                const int k = (y - y0) * kTile + (x - x0);
+                const Vec3 d(dir_x[k], dir_y[k], dir_z[k]);
+                const double t = glm::dot(v, d);  // the centre's ray parameter
+                const double rho_sq = glm::dot(v, v) - t * t;
+                if (!(rho_sq < reach_sq) || !(t > 0)) continue;
+                if (!(t < opaque[static_cast<std::size_t>(y) * w + x])) continue;
+                const double rho = std::sqrt(std::max(rho_sq, 0.0)) / kernel_h;
+                const auto tau = s.kappa_h * static_cast<float>(fp(rho));
+                ++count;
+                if (r.sheets) {
+                    composite_row<true>(buffers, local, &tau, 1, s.color);
+                } else {
+                    composite_row<false>(buffers, local, &tau, 1, s.color);
+                }
+            }
+        }
+    }
+    if (open) flush();
+    for (int y = y0; y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+            const int local = tile_index(x - x0, y - y0);
+            pixel(x, y) = Vec3f(buffers.r[local], buffers.g[local], buffers.b[local]);
+        }
+    }
+    return count;
+}
+
+}  // namespace
+
+Image render_splats(const SplatInputs& in, SplatStats* stats) {
+    const auto start = std::chrono::steady_clock::now();
+    TR_CHECK(in.tf != nullptr && in.footprint != nullptr && in.camera != nullptr);
+    TR_CHECK_EQ(in.scalar.size(), in.points.size());
+    TR_CHECK(in.spacing > 0);
+    if (!in.radius.empty()) TR_CHECK_EQ(in.radius.size(), in.points.size());
+    const CameraFrame& camera = *in.camera;
+    const int w = camera.width(), h = camera.height();
+    if (in.opaque_color) {
+        TR_CHECK_EQ(in.opaque_color->width, w);
+        TR_CHECK_EQ(in.opaque_color->height, h);
+    }
+    if (in.opaque_depth) TR_CHECK_EQ(in.opaque_depth->size(), static_cast<std::size_t>(w) * h);
+    const bool orthographic = camera.orthographic();
+    const double support = in.footprint->support();
+    // Pixels per world unit at unit depth (perspective) or anywhere (orthographic).
+    const double per_unit =
+        std::abs(camera.project(camera.eye() + camera.forward()).y -
+                 camera.project(camera.eye() + camera.forward() + camera.up()).y);
+    // Each point's splat; the drawing order; the tiles' bins.
+    SplatSet set = make_splats(in, support, per_unit);
+    const bool sheets = in.compositing == SplatCompositing::kSheetBuffer;
+    const DrawOrder order = draw_order(in, set, sheets);
+    TileBins bins = bin_into_tiles(set, order.sequence, w, h, in.points.size());
+
+    // The tiles, each over its pixels of the background or the opaque surfaces.
+    Image image(w, h, Vec3f(in.background));
+    if (in.opaque_color) image = *in.opaque_color;
+    const SplatFootprint& fp = *in.footprint;
+    TileRasterInputs raster;
+    raster.in = &in;
+    raster.splats = set.splats.get();
+    raster.bins = &bins;
+    raster.image = &image;
+    raster.sheets = sheets;
+    raster.per_unit = per_unit;
+    raster.support_sq = support * support;
     // Orthographic splats of one scale (a lattice's) are drawn from stamps.
     std::optional<SplatStamps> stamps;
     if (orthographic && in.radius.empty() && SplatStamps::fits(fp, per_unit * in.spacing)) {
         stamps.emplace(fp, per_unit * in.spacing);
+        raster.stamps = &*stamps;
     }
-    const auto raster_ortho =
-        sheets ? (opaque ? raster_splat<true, true> : raster_splat<true, false>)
-               : (opaque ? raster_splat<false, true> : raster_splat<false, false>);
-    const splat_rows::FootprintTable table{fp.squared_table(), fp.squared_scale(),
-                                           fp.squared_last(), static_cast<float>(support_sq)};
+    const bool opaque = in.opaque_depth != nullptr;
+    raster.raster_ortho = sheets
+                              ? (opaque ? raster_splat<true, true> : raster_splat<true, false>)
+                              : (opaque ? raster_splat<false, true> : raster_splat<false, false>);
+    raster.table = {fp.squared_table(), fp.squared_scale(), fp.squared_last(),
+                    static_cast<float>(raster.support_sq)};
     std::atomic<std::size_t> fragments{0};
-    parallel_for(0, tiles, 1, [&](std::size_t tile) {
-        const int x0 = static_cast<int>(tile % tiles_x) * kTile;
-        const int y0 = static_cast<int>(tile / tiles_x) * kTile;
-        const int x1 = std::min(x0 + kTile, w) - 1, y1 = std::min(y0 + kTile, h) - 1;
-        if (bin_start[tile] == bin_start[tile + 1]) return;
-        // Perspective: the pixels' rays from the eye, their unit directions planar.
-        double dir_x[kTile * kTile], dir_y[kTile * kTile], dir_z[kTile * kTile];
-        for (int y = y0; !orthographic && y <= y1; ++y) {
-            for (int x = x0; x <= x1; ++x) {
-                const Vec3 d = camera.pixel_ray(x, y).direction;
-                const int k = (y - y0) * kTile + (x - x0);
-                dir_x[k] = d.x, dir_y[k] = d.y, dir_z[k] = d.z;
-            }
-        }
-        TileBuffers buffers;
-        auto pixel = [&](int x, int y) -> Vec3f& {
-            return image.pixels[static_cast<std::size_t>(y) * w + x];
-        };
-        for (int y = y0; y <= y1; ++y) {
-            for (int x = x0; x <= x1; ++x) {
-                const int local = tile_index(x - x0, y - y0);
-                const Vec3f& p = pixel(x, y);
-                buffers.r[local] = p.r, buffers.g[local] = p.g, buffers.b[local] = p.b;
-            }
-        }
-        std::size_t count = 0;
-        std::int64_t current = 0;
-        bool open = false;
-        // The sheet composited over the tile: alpha = 1 - e^-tau, colour sum(c tau) / tau alpha.
-        auto flush = [&] {
-            const int from = buffers.rows_from * kStride, to = buffers.rows_to * kStride;
-            if (from < to) {
-                splat_rows::composite_sheet(color_row(buffers, from),
-                                            {buffers.tau + from, buffers.tau_r + from,
-                                             buffers.tau_g + from, buffers.tau_b + from},
-                                            to - from);
-            }
-            buffers.rows_from = kTile, buffers.rows_to = 0;
-        };
-        // The tile's splats in order: per splat, sorted here by depth (their data now cached).
-        const std::span<std::uint32_t> bin(binned.data() + bin_start[tile],
-                                           bin_start[tile + 1] - bin_start[tile]);
-        if (!sheets) {
-            std::vector<DepthEntry> entries(bin.size());
-            for (std::size_t k = 0; k < bin.size(); ++k) {
-                if (k + kPrefetch < bin.size()) __builtin_prefetch(&splats[bin[k + kPrefetch]]);
-                entries[k] = {splats[bin[k]].depth, bin[k]};
-            }
-            std::sort(entries.begin(), entries.end(), further_back);
-            for (std::size_t k = 0; k < bin.size(); ++k) bin[k] = entries[k].index;
-        }
-        for (std::size_t k = 0; k < bin.size(); ++k) {
-            // The tile's splats lie scattered through the array: fetched a few ahead.
-            if (k + kPrefetch < bin.size()) __builtin_prefetch(&splats[bin[k + kPrefetch]]);
-            const std::uint32_t i = bin[k];
-            const Splat& s = splats[i];
-            if (sheets) {
-                if (open && s.sheet != current) flush();
-                current = s.sheet, open = true;
-            }
-            const int ya = std::max(s.y0, y0), yb = std::min(s.y1, y1);
-            const int xa = std::max(s.x0, x0), xb = std::min(s.x1, x1);
-            const TileTarget target{xa, xb, ya, yb, x0, y0, &buffers, w, opaque};
-            if (orthographic) {
-                if (!(s.depth > 0)) continue;
-                count += raster_ortho(s, target, stamps ? &*stamps : nullptr, per_unit, fp);
-                continue;
-            }
-            const double kernel_h = s.h, reach_sq = support_sq * kernel_h * kernel_h;
-            const Vec3 v = in.points[s.point] - camera.eye();
-            if (!opaque) {
-                // Row by row, vectorised (project/splat/splat_rows.h).
-                float tau[kTile];
-                for (int y = ya; y <= yb; ++y) {
-                    const int k = (y - y0) * kTile + (xa - x0), n = xb - xa + 1;
-                    splat_rows::perspective_depths(tau, dir_x + k, dir_y + k, dir_z + k, n, v,
-                                                   1.0 / (kernel_h * kernel_h), s.kappa_h, table);
-                    if (sheets) {
-                        composite_row<true>(buffers, tile_index(xa - x0, y - y0), tau, n, s.color);
-                    } else {
-                        composite_row<false>(buffers, tile_index(xa - x0, y - y0), tau, n, s.color);
-                    }
-                    count += static_cast<std::size_t>(n);
-                }
-                continue;
-            }
-            for (int y = ya; y <= yb; ++y) {
-                for (int x = xa; x <= xb; ++x) {
-                    const int local = tile_index(x - x0, y - y0);
-                    const int k = (y - y0) * kTile + (x - x0);
-                    const Vec3 d(dir_x[k], dir_y[k], dir_z[k]);
-                    const double t = glm::dot(v, d);  // the centre's ray parameter
-                    const double rho_sq = glm::dot(v, v) - t * t;
-                    if (!(rho_sq < reach_sq) || !(t > 0)) continue;
-                    if (!(t < opaque[static_cast<std::size_t>(y) * w + x])) continue;
-                    const double rho = std::sqrt(std::max(rho_sq, 0.0)) / kernel_h;
-                    const auto tau = s.kappa_h * static_cast<float>(fp(rho));
-                    ++count;
-                    if (sheets) {
-                        composite_row<true>(buffers, local, &tau, 1, s.color);
-                    } else {
-                        composite_row<false>(buffers, local, &tau, 1, s.color);
-                    }
-                }
-            }
-        }
-        if (open) flush();
-        for (int y = y0; y <= y1; ++y) {
-            for (int x = x0; x <= x1; ++x) {
-                const int local = tile_index(x - x0, y - y0);
-                pixel(x, y) = Vec3f(buffers.r[local], buffers.g[local], buffers.b[local]);
-            }
-        }
-        fragments += count;
-    });
+    parallel_for(0, bins.tiles, 1,
+                 [&](std::size_t tile) { fragments += raster_tile(raster, tile); });
     if (stats) {
-        stats->splats_drawn = drawn.size();
+        stats->splats_drawn = set.drawn.size();
         stats->fragments = fragments.load();
-        stats->sheet_axis = axis;
-        stats->sheets = sheet_count;
+        stats->sheet_axis = order.axis;
+        stats->sheets = order.sheet_count;
         stats->raster_ms = ms_since(start);
     }
     return image;
