@@ -10,6 +10,7 @@
 #include <project/colormap.h>
 #include <tests/mesh/mixed_grid.h>
 #include <tests/support/image_check.h>
+#include <tests/support/sanitized.h>
 
 #include <gtest/gtest.h>
 
@@ -89,6 +90,11 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 TEST(ReferenceVolumesRealData, FusedMethodsAgainstTheReferenceOnADiskCrossedByABox) {
     if (!have_disk()) GTEST_SKIP() << "no shared data (" << kDisk << ")";
+    if (testing::kSanitized) {
+        GTEST_SKIP() << "accuracy at 384x384 on 1.6M overlap intervals: the Release build's "
+                        "(84 s under the sanitizers; reference_volumes_test.cpp takes the same "
+                        "code paths on small meshes)";
+    }
     Scene scene = overlapping_scene(384);
     Pipeline pipeline;
     RenderOptions reference_options;

@@ -6,6 +6,7 @@
 #include <project/splat/splat_renderer.h>
 #include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/splat/splat_inputs.h>
+#include <tests/support/sanitized.h>
 
 #include <gtest/gtest.h>
 
@@ -195,6 +196,12 @@ TEST(SplatCompositing, SheetsBackToFrontFromEitherSide) {
 // A smooth field on a 64^3-cell lattice (65^3 points) against the exact integral of the same
 // lattice's linear tets (the reference ray caster), both kernels, both compositings.
 TEST(SplatCompositing, SmoothField64AgainstTheExactIntegral) {
+    if (testing::kSanitized) {
+        GTEST_SKIP()
+            << "accuracy on 65^3 points: the Release build's (54 s under the "
+               "sanitizers; the 16^3 and 32^3 lattices of the other splat tests take the same code "
+               "paths)";
+    }
     constexpr int kCells = 64;
     const TetMesh box = uniform_box(kCells, 8.0);
     std::vector<float> scalar;
