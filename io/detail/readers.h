@@ -1,7 +1,9 @@
 #pragma once
 // Private: one function per file format. Each throws IoError (common.h) on failure and returns
-// a mesh that the caller validates. std only: the VTK-based ones live in vtk_readers.cpp, the
-// hand-parsed ones in text_readers.cpp.
+// a mesh that the caller validates. std only: the VTK-based ones live one file per format
+// (vtk_xml_reader.cpp, vtk_legacy_reader.cpp, exodus_reader.cpp, plot3d_reader.cpp,
+// vtk_surface_reader.cpp; what they share in vtk_convert.h), the hand-parsed ones in
+// text_readers.cpp and one file each for PLY, OBJ and STL.
 
 #include <io/detail/common.h>
 #include <mesh/surface_mesh.h>
