@@ -27,6 +27,17 @@ inline std::string number_text(double v) {
 
 }  // namespace cli_checks_detail
 
+// A finite number (not NaN, not infinite).
+inline const CLI::Validator kFinite(
+    [](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v)) {
+            return "must be a finite number, not '" + text + "'";
+        }
+        return {};
+    },
+    "FINITE");
+
 // A finite number > 0.
 inline const CLI::Validator kPositive(
     [](std::string& text) -> std::string {

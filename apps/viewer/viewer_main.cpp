@@ -334,7 +334,8 @@ int main(int argc, char** argv) {
         ->check(tr::apps::in_range(1, 100000));
     app.add_option("--orbit", args.orbit,
                    "Headless: degrees the camera turns about the scene's up axis (view_up) over "
-                   "the frames, without rolling");
+                   "the frames, without rolling")
+        ->check(tr::apps::kFinite);
     app.add_option("--frames-dir", args.frames_dir,
                    "Headless: also write every frame as DIR/frame_0000.png, ... (a movie: "
                    "ffmpeg -i DIR/frame_%04d.png out.mp4)");
@@ -390,6 +391,7 @@ int main(int argc, char** argv) {
         app.add_option("--seed-center", args.seed_center, "Flow volume: dye polygon centre x,y,z")
             ->expected(3)
             ->delimiter(',')
+            ->check(tr::apps::kFinite)
             ->needs(vectors);
     auto* size =
         app.add_option("--seed-size", args.seed_size, "Flow volume: dye polygon width,height")
@@ -402,6 +404,7 @@ int main(int argc, char** argv) {
                    "Flow volume: dye polygon normal x,y,z (default: the flow at its centre)")
         ->expected(3)
         ->delimiter(',')
+        ->check(tr::apps::kFinite)
         ->needs(vectors);
     app.add_option("--seed-res", args.flow.seed_resolution,
                    "Flow volume: quads per side of the polygon (default 32)")
@@ -416,7 +419,7 @@ int main(int argc, char** argv) {
     app.add_option("--split-threshold", args.flow.split_threshold,
                    "Flow volume: split front edges longer than this many seed spacings "
                    "(default 2; 0: off)")
-        ->check(CLI::Number)
+        ->check(tr::apps::kFinite)
         ->needs(vectors);
     app.add_option("--legend", args.legend,
                    "The colour legend (name, range, ticks) in the window: on (default) or off; "

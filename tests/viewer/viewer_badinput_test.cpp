@@ -129,6 +129,15 @@ TEST(ViewerBadInput, EveryClassIsOneLineNoCrashNoHangNoPicture) {
         {"--time-step 1.5", mesh + " --time-step 1.5"},
         {"--integrator exact", mesh + " --integrator exact"},
         {"--method nope", mesh + " --method nope"},
+        // Issue 27: every numeric option refuses NaN and infinity.
+        {"--orbit nan", mesh + " --orbit nan --frames 2"},
+        {"--orbit inf", mesh + " --orbit inf --frames 2"},
+        {"--seed-center nan", mesh + " --flowvol-vectors blob --seed-center 0,nan,0 "
+                                     "--seed-size 0.5,0.5"},
+        {"--seed-normal inf", mesh + " --flowvol-vectors blob --seed-center 0,0,0 "
+                                     "--seed-size 0.5,0.5 --seed-normal 0,0,inf"},
+        {"--split-threshold nan", mesh + " --flowvol-vectors blob --seed-center 0,0,0 "
+                                         "--seed-size 0.5,0.5 --split-threshold nan"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
@@ -143,6 +152,10 @@ TEST(ViewerBadInput, EveryClassIsOneLineNoCrashNoHangNoPicture) {
         EXPECT_EQ(run.err.rfind("tetrender-view: ", 0), 0u) << run.err;  // the program's name
         EXPECT_LT(run.err.size(), 300u) << run.err;  // no 309-digit bound (DBL_MAX) printed
         EXPECT_FALSE(std::filesystem::exists(out)) << run.err;
+        if (c.name.find(" nan") != std::string::npos || c.name.find(" inf") != std::string::npos) {
+            EXPECT_EQ(run.exit_code, 2) << run.err;
+            EXPECT_NE(run.err.find("must be a finite number"), std::string::npos) << run.err;
+        }
         std::filesystem::remove(out);
     }
 }
