@@ -57,7 +57,7 @@ MethodKey start_time_key() {
 
 Status check_animated_scene(const Scene& scene, const RenderOptions& options,
                             std::string_view name) {
-    const std::int64_t steps = integer_key(scene, "steps", 100);
+    const int steps = steps_of(scene);
     if (const MethodOption* o = option(scene, "frame")) {
         const std::int64_t frame = *std::get_if<std::int64_t>(o);
         if (frame > steps) {
@@ -90,8 +90,10 @@ Result<SceneFlow> scene_flow(Pipeline& pipeline, const Scene& scene) {
     return SceneFlow{std::move(domain), std::move(velocity).value()};
 }
 
+int steps_of(const Scene& scene) { return static_cast<int>(integer_key(scene, "steps", 100)); }
+
 int last_frame(const Scene& scene, const RenderOptions& options) {
-    const auto steps = static_cast<int>(integer_key(scene, "steps", 100));
+    const int steps = steps_of(scene);
     return options.on_frame ? steps : static_cast<int>(integer_key(scene, "frame", steps));
 }
 

@@ -34,6 +34,9 @@ struct SceneFlow {
 };
 Result<SceneFlow> scene_flow(Pipeline& pipeline, const Scene& scene);
 
+// The key `steps`: frames after frame 0 (default 100, as steps_key() says).
+int steps_of(const Scene& scene);
+
 // The last frame a render advances to: `steps` when every frame is handed over
 // (RenderOptions::on_frame), else the key `frame` (default `steps`).
 int last_frame(const Scene& scene, const RenderOptions& options);

@@ -106,7 +106,7 @@ class SpotNoiseMethod final : public RenderMethod {
             spot_options.spots.start_time = number_key(scene, "start_time", 0.0);
             spot_options.start_time_set = true;
         }
-        const int steps = static_cast<int>(integer_key(scene, "steps", 100));
+        const int steps = steps_of(scene);
         spot_options.steps = steps;
         spot_options.width = scene.width;
         spot_options.height = scene.height;

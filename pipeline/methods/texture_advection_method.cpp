@@ -123,7 +123,7 @@ class TextureAdvectionMethod final : public RenderMethod {
         TR_TRY_STATUS(
             check_layers_memory(scene, std::max<std::size_t>(1, sheet_options.slices.size())));
         sheet_options.sheet_resolution = static_cast<int>(integer_key(scene, "resolution", 256));
-        const int steps = static_cast<int>(integer_key(scene, "steps", 100));
+        const int steps = steps_of(scene);
         sheet_options.steps = steps;
         sheet_options.dt = number_key(scene, "dt", 0.0);
         if (option(scene, "start_time")) {
