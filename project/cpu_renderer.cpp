@@ -29,6 +29,71 @@ double edge_function(const StVertex& a, const StVertex& b, double px, double py)
     return swap ? -e : e;
 }
 
+// One triangle of a cell's Shirley-Tuchman projection rasterized over the box b (clipped to the
+// tile): thickness and the front and back scalars interpolated across it, each pixel's segment
+// shaded and passed to composite(pixel, shaded). Pixels on the triangle's edges go to
+// draw_exact(x, y, tile-local pixel) instead, once per cell (`on_edges` lists them). Returns the
+// fragments composited.
+template <class Composite, class DrawExact>
+std::size_t draw_st_triangle(StVertex (&tri)[3], const ScreenBox& b, const TileRays& rays,
+                             const RenderInputs& in, int w, std::vector<int>& on_edges,
+                             Composite&& composite, DrawExact&& draw_exact) {
+    double area = edge_function(tri[0], tri[1], tri[2].x, tri[2].y);
+    if (area == 0) return 0;
+    if (area < 0) {
+        std::swap(tri[1], tri[2]);
+        area = -area;
+    }
+    const double lo_x = std::min({tri[0].x, tri[1].x, tri[2].x});
+    const double hi_x = std::max({tri[0].x, tri[1].x, tri[2].x});
+    const double lo_y = std::min({tri[0].y, tri[1].y, tri[2].y});
+    const double hi_y = std::max({tri[0].y, tri[1].y, tri[2].y});
+    const int x0 = std::max(b.x0, static_cast<int>(std::ceil(lo_x - 0.5)));
+    const int x1 = std::min(b.x1, static_cast<int>(std::floor(hi_x - 0.5)));
+    const int y0 = std::max(b.y0, static_cast<int>(std::ceil(lo_y - 0.5)));
+    const int y1 = std::min(b.y1, static_cast<int>(std::floor(hi_y - 0.5)));
+    std::size_t fragments = 0;
+    for (int y = y0; y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+            const double px = x + 0.5, py = y + 0.5;
+            const double w0 = edge_function(tri[1], tri[2], px, py);
+            const double w1 = edge_function(tri[2], tri[0], px, py);
+            const double w2 = edge_function(tri[0], tri[1], px, py);
+            if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+            if (w0 == 0 || w1 == 0 || w2 == 0) {
+                // On an edge of the projection: screen-space T-junctions in degenerate views
+                // make edge rules disagree between cells, so the exact ray test decides (and
+                // shades) this pixel, once per cell although it lies on two of its triangles.
+                const int local = (y - rays.y0) * kFragmentTile + (x - rays.x0);
+                if (std::find(on_edges.begin(), on_edges.end(), local) != on_edges.end()) {
+                    continue;
+                }
+                on_edges.push_back(local);
+                draw_exact(x, y, rays.rays[local]);
+                continue;
+            }
+            const double b0 = w0 / area, b1 = w1 / area, b2 = w2 / area;
+            double u = b0 * tri[0].thickness + b1 * tri[1].thickness + b2 * tri[2].thickness;
+            const double sf = b0 * tri[0].s_front + b1 * tri[1].s_front + b2 * tri[2].s_front;
+            double sb = b0 * tri[0].s_back + b1 * tri[1].s_back + b2 * tri[2].s_back;
+            const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
+            if (in.opaque_depth) {
+                const double tf = b0 * tri[0].t_front + b1 * tri[1].t_front + b2 * tri[2].t_front;
+                const double room = (*in.opaque_depth)[pixel] - tf;
+                if (!(room > 0)) continue;
+                if (room < u) {
+                    sb = sf + (sb - sf) * room / u;
+                    u = room;
+                }
+            }
+            if (!(u > 0)) continue;
+            composite(pixel, in.shader->shade(sf, sb, u));
+            ++fragments;
+        }
+    }
+    return fragments;
+}
+
 }  // namespace
 
 double longest_edge(const TetMesh& mesh) {
@@ -90,7 +155,6 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats,
         };
         TileRays rays;  // the tile's rays, computed once
         tile_rays(bins, tile, camera, rays);
-        const int px0 = rays.x0, py0 = rays.y0;
         std::size_t tile_fragments = 0;
         // A cell's fragments in this tile: segments, their pixels, their shading.
         SegmentQuery queries[kFragmentTile * kFragmentTile];
@@ -120,71 +184,13 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats,
                 // thickness and the front and back scalars interpolated across the triangles.
                 StProjection st;
                 if (!shirley_tuchman_projection(mesh, in.scalar, t, planes, camera, st)) continue;
-                const StVertex* corners = st.corners;
-                const int* hull = st.hull;
                 const int n = st.num_hull;
-                const StVertex& thick = st.thick;
                 on_edges.clear();
                 for (int e = 0; e < n; ++e) {
-                    StVertex tri[3] = {thick, corners[hull[e]], corners[hull[(e + 1) % n]]};
-                    double area = edge_function(tri[0], tri[1], tri[2].x, tri[2].y);
-                    if (area == 0) continue;
-                    if (area < 0) {
-                        std::swap(tri[1], tri[2]);
-                        area = -area;
-                    }
-                    const double lo_x = std::min({tri[0].x, tri[1].x, tri[2].x});
-                    const double hi_x = std::max({tri[0].x, tri[1].x, tri[2].x});
-                    const double lo_y = std::min({tri[0].y, tri[1].y, tri[2].y});
-                    const double hi_y = std::max({tri[0].y, tri[1].y, tri[2].y});
-                    const int x0 = std::max(b.x0, static_cast<int>(std::ceil(lo_x - 0.5)));
-                    const int x1 = std::min(b.x1, static_cast<int>(std::floor(hi_x - 0.5)));
-                    const int y0 = std::max(b.y0, static_cast<int>(std::ceil(lo_y - 0.5)));
-                    const int y1 = std::min(b.y1, static_cast<int>(std::floor(hi_y - 0.5)));
-                    for (int y = y0; y <= y1; ++y) {
-                        for (int x = x0; x <= x1; ++x) {
-                            const double px = x + 0.5, py = y + 0.5;
-                            const double w0 = edge_function(tri[1], tri[2], px, py);
-                            const double w1 = edge_function(tri[2], tri[0], px, py);
-                            const double w2 = edge_function(tri[0], tri[1], px, py);
-                            if (w0 < 0 || w1 < 0 || w2 < 0) continue;
-                            if (w0 == 0 || w1 == 0 || w2 == 0) {
-                                // On an edge of the projection: screen-space T-junctions in
-                                // degenerate views make edge rules disagree between cells,
-                                // so the exact ray test decides (and shades) this pixel, once
-                                // per cell although it lies on two of its triangles.
-                                const int local = (y - py0) * kFragmentTile + (x - px0);
-                                if (std::find(on_edges.begin(), on_edges.end(), local) !=
-                                    on_edges.end()) {
-                                    continue;
-                                }
-                                on_edges.push_back(local);
-                                draw_exact(x, y, rays.rays[local]);
-                                continue;
-                            }
-                            const double b0 = w0 / area, b1 = w1 / area, b2 = w2 / area;
-                            double u = b0 * tri[0].thickness + b1 * tri[1].thickness +
-                                       b2 * tri[2].thickness;
-                            const double sf =
-                                b0 * tri[0].s_front + b1 * tri[1].s_front + b2 * tri[2].s_front;
-                            double sb =
-                                b0 * tri[0].s_back + b1 * tri[1].s_back + b2 * tri[2].s_back;
-                            const std::size_t pixel = static_cast<std::size_t>(y) * w + x;
-                            if (in.opaque_depth) {
-                                const double tf =
-                                    b0 * tri[0].t_front + b1 * tri[1].t_front + b2 * tri[2].t_front;
-                                const double room = (*in.opaque_depth)[pixel] - tf;
-                                if (!(room > 0)) continue;
-                                if (room < u) {
-                                    sb = sf + (sb - sf) * room / u;
-                                    u = room;
-                                }
-                            }
-                            if (!(u > 0)) continue;
-                            composite(pixel, in.shader->shade(sf, sb, u));
-                            ++tile_fragments;
-                        }
-                    }
+                    StVertex tri[3] = {st.thick, st.corners[st.hull[e]],
+                                       st.corners[st.hull[(e + 1) % n]]};
+                    tile_fragments +=
+                        draw_st_triangle(tri, b, rays, in, w, on_edges, composite, draw_exact);
                 }
                 continue;
             }

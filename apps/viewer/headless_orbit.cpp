@@ -13,6 +13,97 @@
 #include <optional>
 
 namespace tr::viewer {
+namespace {
+
+// What the orbit's frames drew and how long they took, for the line it prints.
+struct OrbitTotals {
+    int frames = 0;
+    double frame_ms = 0, sort_ms = 0, classify_ms = 0, raster_ms = 0;
+    std::size_t sorts = 0, drawn = 0;
+    std::optional<PbvrFrame> shown;   // particle-based: the last picture
+    std::optional<FusedFrame> fused;  // several volumes: the last picture
+    AnimationFrames animation;        // an animated method's last view's frames
+};
+
+// The orbit's one line of figures, for what the view drew.
+void print_orbit_stats(VolumeView& view, const OrbitTotals& totals, FlowControls* flow,
+                       bool animated, bool particles, int batch) {
+    const ViewerScene& vs = view.scene();
+    const int width = vs.scene.width, height = vs.scene.height;
+    const int frames = totals.frames;
+    const double frame_ms = totals.frame_ms;
+    std::string flow_text;
+    std::size_t cells = vs.sort.mesh().num_real_tets();
+    if (flow) {
+        const GrownFlowVolume& grown = *flow->grown();
+        char text[160];
+        std::snprintf(text, sizeof(text),
+                      ", flow volume: %zu layers, %zu particles inserted, grown in %.1f ms",
+                      grown.volume->layer_tets.size(), grown.volume->particles_inserted,
+                      grown.grow_ms);
+        flow_text = text;
+        cells = grown.volume->mesh.num_tets();
+    }
+    if (totals.fused) {
+        const FusedFrame& f = *totals.fused;
+        std::fprintf(stderr,
+                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), %zu volumes fused "
+                     "(%s): %s, %d pbvr-image repetitions in %d batches, %.1f ms/batch mean, exact "
+                     "%.1f ms, setup %.1f ms, %zu particles, %zu fragments, %zu overlap "
+                     "intervals, %dx%d\n",
+                     frames, frame_ms / frames, 1000.0 * frames / frame_ms, vs.fused.size(),
+                     fused_mode_name(view.fused_mode()).data(),
+                     f.exact ? "exact picture" : "pbvr-image picture", f.repetitions, f.batches,
+                     f.mean_batch_ms, f.exact_ms, f.setup_ms, f.particles, f.fragments,
+                     f.overlap_intervals, width, height);
+        return;
+    }
+    if (animated) {
+        const AnimationFrames& animation = totals.animation;
+        std::fprintf(stderr,
+                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), %s: frame i of "
+                     "its %d frames at frame i, %zu rendered for the last view, the first in "
+                     "%.1f ms (setup), %.1f ms a frame after it, %dx%d\n",
+                     frames, frame_ms / frames, 1000.0 * frames / frame_ms,
+                     view_method_name(view.mode()).data(), animation.total, animation.frames.size(),
+                     animation.first_ms, animation.frame_ms, width, height);
+        return;
+    }
+    if (particles && view.mode() == ViewMethod::kSplat) {
+        const PbvrFrame& f = *totals.shown;
+        std::fprintf(stderr,
+                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), splat: %.1f ms "
+                     "the last picture%s, %dx%d\n",
+                     frames, frame_ms / frames, 1000.0 * frames / frame_ms, f.batch_ms,
+                     view.splat_cycle() ? " (vector splats, frame i of the cycle at frame i)" : "",
+                     width, height);
+        return;
+    }
+    if (particles) {
+        const PbvrFrame& f = *totals.shown;
+        std::fprintf(stderr,
+                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), %s: %d "
+                     "repetitions in %d batches (%d a batch), %.1f ms/batch mean, setup %.1f "
+                     "ms, %zu particles, %d repetitions from kept particles, retarget %zu "
+                     "cells, %zu cells, %dx%d\n",
+                     frames, frame_ms / frames, 1000.0 * frames / frame_ms,
+                     view_method_name(view.mode()).data(), f.repetitions, f.batches, batch,
+                     f.mean_batch_ms, f.setup_ms, f.particles, f.reused_repetitions,
+                     f.retargeted_cells, f.cells, width, height);
+        return;
+    }
+    std::fprintf(stderr,
+                 "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), sort %.1f ms mean "
+                 "(%zu sorts), classify %.1f ms, raster %.1f ms, %zu cells (%zu drawn), "
+                 "%dx%d, %s%s\n",
+                 frames, frame_ms / frames, 1000.0 * frames / frame_ms,
+                 totals.sorts ? totals.sort_ms / static_cast<double>(totals.sorts) : 0.0,
+                 totals.sorts, totals.classify_ms / frames, totals.raster_ms / frames, cells,
+                 totals.drawn, width, height, integrator_name(view.integrator()).data(),
+                 flow_text.c_str());
+}
+
+}  // namespace
 
 int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptions& options) {
     const ViewerScene& vs = view.scene();
@@ -27,11 +118,11 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
     const bool particles = view.particle_mode() && !flow && !view.fused() && !animated;
     const int target = view.particles().target();
     const int batch = std::min(vs.pbvr.batch_for(view.mode()), target);
-    std::optional<PbvrFrame> shown;
-    std::optional<FusedFrame> fused;
-    AnimationFrames animation;
-    double frame_ms = 0, sort_ms = 0, classify_ms = 0, raster_ms = 0;
-    std::size_t sorts = 0, drawn = 0;
+    OrbitTotals totals;
+    totals.frames = frames;
+    std::optional<PbvrFrame>& shown = totals.shown;
+    std::optional<FusedFrame>& fused = totals.fused;
+    AnimationFrames& animation = totals.animation;
     std::uint64_t last_seen = 0;
     if (flow) {
         // Grown before the frames; they show it growing, one layer a frame, and the last frame
@@ -74,14 +165,14 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
             const SortedOrder order = view.current_order(camera, last);
             if (order.view_id != last_seen) {
                 last_seen = order.view_id;
-                sort_ms += order.stats.milliseconds;
-                ++sorts;
+                totals.sort_ms += order.stats.milliseconds;
+                ++totals.sorts;
             }
             stats = view.render_volume(frame, order);
         }
-        classify_ms += stats.classify_ms;
-        raster_ms += stats.raster_ms;
-        drawn = stats.cells_drawn;
+        totals.classify_ms += stats.classify_ms;
+        totals.raster_ms += stats.raster_ms;
+        totals.drawn = stats.cells_drawn;
         if (last && panel) {
             view.active().bind_framebuffer();
             panel->add_frame_ms(ms_since(frame_start));
@@ -90,7 +181,7 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
             panel->draw(camera, false);
             panel->draw(camera);
         }
-        frame_ms += ms_since(frame_start);
+        totals.frame_ms += ms_since(frame_start);
         if (!options.frames_dir.empty()) {
             const Status frame_written =
                 write_image(view.active().read_image(), frame_path(options.frames_dir, i));
@@ -99,73 +190,7 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
     }
     const Status written = write_image(view.active().read_image(), options.screenshot);
     if (!written.ok()) return apps::report_error(written.error());
-    std::string flow_text;
-    std::size_t cells = vs.sort.mesh().num_real_tets();
-    if (flow) {
-        const GrownFlowVolume& grown = *flow->grown();
-        char text[160];
-        std::snprintf(text, sizeof(text),
-                      ", flow volume: %zu layers, %zu particles inserted, grown in %.1f ms",
-                      grown.volume->layer_tets.size(), grown.volume->particles_inserted,
-                      grown.grow_ms);
-        flow_text = text;
-        cells = grown.volume->mesh.num_tets();
-    }
-    if (fused) {
-        const FusedFrame& f = *fused;
-        std::fprintf(stderr,
-                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), %zu volumes fused "
-                     "(%s): %s, %d pbvr-image repetitions in %d batches, %.1f ms/batch mean, exact "
-                     "%.1f ms, setup %.1f ms, %zu particles, %zu fragments, %zu overlap "
-                     "intervals, %dx%d\n",
-                     frames, frame_ms / frames, 1000.0 * frames / frame_ms, vs.fused.size(),
-                     fused_mode_name(view.fused_mode()).data(),
-                     f.exact ? "exact picture" : "pbvr-image picture", f.repetitions, f.batches,
-                     f.mean_batch_ms, f.exact_ms, f.setup_ms, f.particles, f.fragments,
-                     f.overlap_intervals, width, height);
-        return apps::kExitOk;
-    }
-    if (animated) {
-        std::fprintf(stderr,
-                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), %s: frame i of "
-                     "its %d frames at frame i, %zu rendered for the last view, the first in "
-                     "%.1f ms (setup), %.1f ms a frame after it, %dx%d\n",
-                     frames, frame_ms / frames, 1000.0 * frames / frame_ms,
-                     view_method_name(view.mode()).data(), animation.total, animation.frames.size(),
-                     animation.first_ms, animation.frame_ms, width, height);
-        return apps::kExitOk;
-    }
-    if (particles && view.mode() == ViewMethod::kSplat) {
-        const PbvrFrame& f = *shown;
-        std::fprintf(stderr,
-                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), splat: %.1f ms "
-                     "the last picture%s, %dx%d\n",
-                     frames, frame_ms / frames, 1000.0 * frames / frame_ms, f.batch_ms,
-                     view.splat_cycle() ? " (vector splats, frame i of the cycle at frame i)" : "",
-                     width, height);
-        return apps::kExitOk;
-    }
-    if (particles) {
-        const PbvrFrame& f = *shown;
-        std::fprintf(stderr,
-                     "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), %s: %d "
-                     "repetitions in %d batches (%d a batch), %.1f ms/batch mean, setup %.1f "
-                     "ms, %zu particles, %d repetitions from kept particles, retarget %zu "
-                     "cells, %zu cells, %dx%d\n",
-                     frames, frame_ms / frames, 1000.0 * frames / frame_ms,
-                     view_method_name(view.mode()).data(), f.repetitions, f.batches, batch,
-                     f.mean_batch_ms, f.setup_ms, f.particles, f.reused_repetitions,
-                     f.retargeted_cells, f.cells, width, height);
-        return apps::kExitOk;
-    }
-    std::fprintf(stderr,
-                 "tetrender-view: frames %d, %.1f ms/frame mean (%.1f fps), sort %.1f ms mean "
-                 "(%zu sorts), classify %.1f ms, raster %.1f ms, %zu cells (%zu drawn), "
-                 "%dx%d, %s%s\n",
-                 frames, frame_ms / frames, 1000.0 * frames / frame_ms,
-                 sorts ? sort_ms / static_cast<double>(sorts) : 0.0, sorts, classify_ms / frames,
-                 raster_ms / frames, cells, drawn, width, height,
-                 integrator_name(view.integrator()).data(), flow_text.c_str());
+    print_orbit_stats(view, totals, flow, animated, particles, batch);
     return apps::kExitOk;
 }
 

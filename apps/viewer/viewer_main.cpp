@@ -95,7 +95,9 @@ int fail(const std::string& message) {
     return apps::kExitError;
 }
 
-int run(const Args& args) {
+// The viewer's options from the command line, checked: kExitOk, or the exit code of a message
+// already printed.
+int viewer_options(const Args& args, ViewerOptions& options, Integrator& integrator) {
     if (!args.max_memory.empty()) {
         const auto budget = parse_byte_size(args.max_memory);
         if (!budget.ok()) {
@@ -105,7 +107,6 @@ int run(const Args& args) {
         }
         set_memory_budget(*budget);
     }
-    ViewerOptions options;
     options.input = args.input;
     options.colormap = args.colormap;
     options.max_opacity = args.opacity;
@@ -138,14 +139,15 @@ int run(const Args& args) {
         }
         options.flow_volume = spec;
     }
-    const auto integrator = integrator_named(args.integrator);
-    if (!integrator.ok() || *integrator == Integrator::kExact) {
+    const auto named = integrator_named(args.integrator);
+    if (!named.ok() || *named == Integrator::kExact) {
         std::fprintf(stderr,
                      "tetrender-view: unknown --integrator '%s' (exp-texture, "
                      "preintegrated)\n",
                      args.integrator.c_str());
         return apps::kExitUsage;
     }
+    integrator = *named;
     const auto method = sort_method_named(args.sort);
     if (!method.ok()) {
         std::fprintf(stderr, "tetrender-view: %s\n", method.error().message.c_str());
@@ -185,10 +187,15 @@ int run(const Args& args) {
                                  : "--frames-dir writes the frames of a --screenshot orbit");
         }
     }
+    return apps::kExitOk;
+}
 
+// The scene loaded and its method resolved (several volumes: how they are drawn fused):
+// kExitOk, or the exit code of a message already printed.
+int load_scene(const Args& args, const ViewerOptions& options, bool headless, ViewerScene& vs) {
     auto loaded = load_viewer_scene(options);
     if (!loaded.ok()) return apps::report_error(loaded.error());
-    ViewerScene vs = std::move(loaded).value();
+    vs = std::move(loaded).value();
     MethodArgs method_args{args.method, args.repetitions, args.seed, args.batch,
                            headless,    args.vectors,     args.cycle};
     auto resolved = resolve_method(*vs.pipeline, vs.scene, method_args);
@@ -220,16 +227,12 @@ int run(const Args& args) {
                      "tetrahedra cannot order the cells of intersecting meshes\n",
                      vs.fused.size(), fused_mode_name(vs.fused_mode).data());
     }
-    // Headless, the quick look's notes come after the picture, so that an error found while
-    // drawing (a seed outside the mesh) stays one line.
-    const std::vector<std::string> notes = std::move(vs.notes);
-    if (!headless) apps::print_notes(notes);
-    if (!vs.sort.note.empty() && vs.fused.empty())
-        std::fprintf(stderr, "tetrender-view: note: %s\n", vs.sort.note.c_str());
-    if (vs.scene.flow_volume && vs.scene.flow_volume->context) {
-        std::fprintf(stderr, "tetrender-view: note: the flow volume's context veil is not drawn\n");
-    }
+    return apps::kExitOk;
+}
 
+// The window (hidden when headless), its OpenGL context and the ImGui panel; the view drawn in
+// it, interactively or along the headless orbit. Returns the exit code.
+int run_on_display(const Args& args, ViewerScene& vs, Integrator integrator, bool headless) {
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     if ((!display || !*display) && (!wayland || !*wayland)) {
@@ -288,7 +291,7 @@ int run(const Args& args) {
             ImGui_ImplOpenGL3_Init("#version 330 core");
         }
         {
-            VolumeView view(vs, **renderer, *integrator, !headless);
+            VolumeView view(vs, **renderer, integrator, !headless);
             std::optional<ViewerPanel> panel;
             if (ui) {
                 panel.emplace(view);
@@ -309,6 +312,30 @@ int run(const Args& args) {
         }
     }
     glfwDestroyWindow(window);
+    return code;
+}
+
+int run(const Args& args) {
+    ViewerOptions options;
+    Integrator integrator = Integrator::kExpTexture;
+    if (const int code = viewer_options(args, options, integrator); code != apps::kExitOk) {
+        return code;
+    }
+    const bool headless = !args.screenshot.empty();
+    ViewerScene vs;
+    if (const int code = load_scene(args, options, headless, vs); code != apps::kExitOk) {
+        return code;
+    }
+    // Headless, the quick look's notes come after the picture, so that an error found while
+    // drawing (a seed outside the mesh) stays one line.
+    const std::vector<std::string> notes = std::move(vs.notes);
+    if (!headless) apps::print_notes(notes);
+    if (!vs.sort.note.empty() && vs.fused.empty())
+        std::fprintf(stderr, "tetrender-view: note: %s\n", vs.sort.note.c_str());
+    if (vs.scene.flow_volume && vs.scene.flow_volume->context) {
+        std::fprintf(stderr, "tetrender-view: note: the flow volume's context veil is not drawn\n");
+    }
+    const int code = run_on_display(args, vs, integrator, headless);
     if (headless && code == apps::kExitOk) apps::print_notes(notes);
     return code;
 }

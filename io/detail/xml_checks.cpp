@@ -2,6 +2,7 @@
 // small XML scanners the readers share).
 #include <io/detail/common.h>
 #include <io/detail/readers.h>
+#include <io/detail/xml_binary.h>
 
 #include <algorithm>
 #include <cctype>
@@ -9,199 +10,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <functional>
 #include <limits>
-#include <lz4.h>
-#include <lzma.h>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
-#include <zlib.h>
 
 namespace tr::io_detail {
 namespace {
-
-// `n` bytes of the file from `pos`, or nothing when they run past its end.
-std::optional<std::string> read_at(const fs::path& path, std::uintmax_t pos, std::uintmax_t n,
-                                   std::uintmax_t size) {
-    if (pos > size || n > size - pos) return std::nullopt;
-    std::ifstream in(path, std::ios::binary);
-    in.seekg(static_cast<std::streamoff>(pos));
-    std::string bytes(static_cast<std::size_t>(n), '\0');
-    if (!in.read(bytes.data(), static_cast<std::streamsize>(n))) return std::nullopt;
-    return bytes;
-}
-
-// Base64 (VTK's alphabet, '=' padding) of whole 4-character groups; nothing on another
-// character.
-std::optional<std::string> base64_decode(const std::string& text) {
-    const auto digit = [](char c) -> int {
-        if (c >= 'A' && c <= 'Z') return c - 'A';
-        if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-        if (c >= '0' && c <= '9') return c - '0' + 52;
-        if (c == '+') return 62;
-        if (c == '/') return 63;
-        return -1;
-    };
-    std::string out;
-    for (std::size_t g = 0; g + 4 <= text.size(); g += 4) {
-        int d[4];
-        int pad = 0;
-        for (int i = 0; i < 4; ++i) {
-            const char c = text[g + static_cast<std::size_t>(i)];
-            if (c == '=' && i >= 2) {
-                d[i] = 0;
-                ++pad;
-            } else if ((d[i] = digit(c)) < 0 || pad != 0) {
-                return std::nullopt;
-            }
-        }
-        const std::uint32_t v = (std::uint32_t(d[0]) << 18) | (std::uint32_t(d[1]) << 12) |
-                                (std::uint32_t(d[2]) << 6) | std::uint32_t(d[3]);
-        out += static_cast<char>(v >> 16);
-        if (pad < 2) out += static_cast<char>((v >> 8) & 0xff);
-        if (pad < 1) out += static_cast<char>(v & 0xff);
-    }
-    return out;
-}
-
-// The compressors of VTK's XML files, each compressing a block on its own: zlib streams,
-// LZ4 blocks (no frame) and xz streams (lzma_easy_buffer_encode).
-enum class Codec { kZlib, kLz4, kLzma };
-
-// Collects bytes [skip, skip + want) of a decoder's output as it comes.
-class OutputRange {
-  public:
-    OutputRange(std::uint64_t skip, std::size_t want) : skip_(skip), want_(want) {}
-    bool done() const { return out_.size() >= want_; }
-    void add(const unsigned char* bytes, std::uint64_t n) {
-        for (std::uint64_t i = 0; i < n && !done(); ++i) {
-            if (produced_ + i >= skip_) out_ += static_cast<char>(bytes[i]);
-        }
-        produced_ += n;
-    }
-    std::optional<std::string> result() const {
-        if (!done()) return std::nullopt;
-        return out_;
-    }
-
-  private:
-    std::uint64_t skip_, produced_ = 0;
-    std::size_t want_;
-    std::string out_;
-};
-
-// Bytes [skip, skip + want) of the zlib stream `src` inflated (streaming, so a huge block size
-// costs no memory), or nothing when zlib fails or the stream is shorter.
-std::optional<std::string> inflate_range(const std::string& src, std::uint64_t skip,
-                                         std::size_t want) {
-    z_stream z{};
-    if (inflateInit(&z) != Z_OK) return std::nullopt;
-    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(src.data()));
-    z.avail_in = static_cast<uInt>(std::min<std::size_t>(src.size(), 0xffffffffu));
-    OutputRange range(skip, want);
-    unsigned char buffer[1 << 14];
-    int status = Z_OK;
-    while (status == Z_OK && !range.done()) {
-        z.next_out = buffer;
-        z.avail_out = sizeof buffer;
-        status = inflate(&z, Z_NO_FLUSH);
-        if (status != Z_OK && status != Z_STREAM_END) break;
-        const std::uint64_t got = sizeof buffer - z.avail_out;
-        range.add(buffer, got);
-        if (got == 0 && status == Z_OK) break;  // no progress: truncated input
-    }
-    inflateEnd(&z);
-    return range.result();
-}
-
-// The same for an xz stream (vtkLZMADataCompressor), streaming too. The decoder may use at most
-// 256 MiB (a dictionary of 64 MiB, xz's largest preset, needs about 65 MiB); a stream asking
-// for more is not decoded here (VTK then says what is wrong).
-std::optional<std::string> unxz_range(const std::string& src, std::uint64_t skip,
-                                      std::size_t want) {
-    lzma_stream z = LZMA_STREAM_INIT;
-    if (lzma_stream_decoder(&z, std::uint64_t{256} << 20, 0) != LZMA_OK) return std::nullopt;
-    z.next_in = reinterpret_cast<const std::uint8_t*>(src.data());
-    z.avail_in = src.size();
-    OutputRange range(skip, want);
-    unsigned char buffer[1 << 14];
-    lzma_ret status = LZMA_OK;
-    while (status == LZMA_OK && !range.done()) {
-        z.next_out = buffer;
-        z.avail_out = sizeof buffer;
-        status = lzma_code(&z, LZMA_FINISH);
-        if (status != LZMA_OK && status != LZMA_STREAM_END) break;
-        const std::uint64_t got = sizeof buffer - z.avail_out;
-        range.add(buffer, got);
-        if (got == 0 && status == LZMA_OK) break;  // no progress: truncated input
-    }
-    lzma_end(&z);
-    return range.result();
-}
-
-// The same for an LZ4 block (vtkLZ4DataCompressor), decoded up to the bytes wanted (an LZ4
-// block has no streaming decoder, but LZ4 expands at most 255 times: an output past that cannot
-// be in the block, so the buffer is bounded by the file).
-std::optional<std::string> unlz4_range(const std::string& src, std::uint64_t skip,
-                                       std::size_t want) {
-    const std::uint64_t target = skip + want;
-    constexpr std::uint64_t kIntMax = std::numeric_limits<int>::max();
-    if (src.size() > kIntMax || target > kIntMax || target > 255 * src.size() + 16) {
-        return std::nullopt;
-    }
-    std::string out(static_cast<std::size_t>(target), '\0');
-    const int got =
-        LZ4_decompress_safe_partial(src.data(), out.data(), static_cast<int>(src.size()),
-                                    static_cast<int>(target), static_cast<int>(target));
-    if (got < 0 || static_cast<std::uint64_t>(got) < target) return std::nullopt;
-    return out.substr(static_cast<std::size_t>(skip), want);
-}
-
-std::optional<std::string> decode_range(Codec codec, const std::string& src, std::uint64_t skip,
-                                        std::size_t want) {
-    switch (codec) {
-        case Codec::kZlib:
-            return inflate_range(src, skip, want);
-        case Codec::kLz4:
-            return unlz4_range(src, skip, want);
-        case Codec::kLzma:
-            return unxz_range(src, skip, want);
-    }
-    return std::nullopt;
-}
-
-// The bytes of one DataArray as VTK's XML reader sees them: raw bytes from a file position
-// (appended raw), or base64 text from one (inline format="binary", appended base64), in which
-// the block header and the data are encoded separately (vtkXMLWriter ends the base64 stream
-// after the header), each starting a new 4-character group.
-class ArrayBytes {
-  public:
-    ArrayBytes(const fs::path& path, std::uintmax_t size, std::uintmax_t start, bool base64)
-        : path_(path), size_(size), start_(start), base64_(base64) {}
-
-    // Bytes [at, at + n) of the header (part 0) or of what follows a header of `header_bytes`
-    // (part 1).
-    std::optional<std::string> get(int part, std::uint64_t header_bytes, std::uint64_t at,
-                                   std::uint64_t n) const {
-        if (!base64_) return read_at(path_, start_ + part * header_bytes + at, n, size_);
-        const std::uintmax_t begin = start_ + part * ((header_bytes + 2) / 3 * 4);
-        const std::uint64_t g0 = at / 3, g1 = (at + n + 2) / 3;
-        if (g1 > size_) return std::nullopt;
-        const auto text = read_at(path_, begin + 4 * g0, 4 * (g1 - g0), size_);
-        if (!text) return std::nullopt;
-        const auto bytes = base64_decode(*text);
-        if (!bytes || bytes->size() < at - 3 * g0 + n) return std::nullopt;
-        return bytes->substr(static_cast<std::size_t>(at - 3 * g0), static_cast<std::size_t>(n));
-    }
-
-  private:
-    const fs::path& path_;
-    std::uintmax_t size_;
-    std::uintmax_t start_;
-    bool base64_;
-};
 
 // Where the pieces and their Cells sections start in the file, up to <AppendedData> (the XML
 // of a file with inline arrays runs through the whole file: one streaming pass).
@@ -318,17 +134,11 @@ std::optional<std::pair<std::uintmax_t, bool>> array_start(
 // inflates at most to `limit` (10000 bytes per byte of file + 10^6).
 void check_compression_headers(const fs::path& path, const std::string& head,
                                const XmlLandmarks& marks, std::uintmax_t size, double limit) {
-    const std::size_t root = head.find("<VTKFile");
-    if (xml_attribute(head, root, "compressor").empty()) return;
-    const bool big_endian = xml_attribute(head, root, "byte_order") == "BigEndian";
-    const std::size_t hs = xml_attribute(head, root, "header_type") == "UInt64" ? 8 : 4;
+    const BinaryEncoding encoding = binary_encoding(head);
+    if (!encoding.compressed) return;
+    const std::size_t hs = encoding.header_size;
     const auto word = [&](const std::string& bytes, std::size_t i) {
-        std::uint64_t v = 0;
-        for (std::size_t b = 0; b < hs; ++b) {
-            const std::size_t k = big_endian ? b : hs - 1 - b;
-            v = (v << 8) | static_cast<unsigned char>(bytes[i * hs + k]);
-        }
-        return v;
+        return encoding.unsigned_of(bytes, i * hs, hs);
     };
     const std::string appended_tag = marks.appended == std::numeric_limits<std::uintmax_t>::max()
                                          ? std::string()
@@ -365,6 +175,17 @@ void check_compression_headers(const fs::path& path, const std::string& head,
     }
 }
 
+// The integer of an offsets array's element (type "Int32", "UInt64", ...) as a double.
+double offset_value(std::uint64_t raw, bool is_signed, std::size_t type_size) {
+    double value = static_cast<double>(raw);
+    if (is_signed && type_size < 8 && (raw >> (8 * type_size - 1)) != 0) {
+        value -= std::ldexp(1.0, static_cast<int>(8 * type_size));
+    } else if (is_signed && type_size == 8) {
+        value = static_cast<double>(static_cast<std::int64_t>(raw));
+    }
+    return value;
+}
+
 // The value of each piece's Cells "offsets" array that VTK's XML reader allocates the
 // connectivity for (the last one it reads: index NumberOfCells - 1), and the array's last value,
 // checked against `limit`: VTK allocates before checking it (a last offset of 1.4e16 asked
@@ -377,19 +198,8 @@ void check_compression_headers(const fs::path& path, const std::string& head,
 void check_cell_offsets(const fs::path& path, const std::string& head, const XmlLandmarks& marks,
                         std::uintmax_t size, double limit) {
     const std::string where = path.string();
-    const std::size_t root = head.find("<VTKFile");
-    const std::string compressor = xml_attribute(head, root, "compressor");
-    const bool compressed = !compressor.empty();
-    Codec codec = Codec::kZlib;
-    if (compressor == "vtkLZ4DataCompressor") {
-        codec = Codec::kLz4;
-    } else if (compressor == "vtkLZMADataCompressor") {
-        codec = Codec::kLzma;
-    } else if (compressed && compressor != "vtkZLibDataCompressor") {
-        return;  // VTK 9.1 knows no other compressor: it refuses the file
-    }
-    const bool big_endian = xml_attribute(head, root, "byte_order") == "BigEndian";
-    const std::size_t header_size = xml_attribute(head, root, "header_type") == "UInt64" ? 8 : 4;
+    const BinaryEncoding encoding = binary_encoding(head);
+    if (!encoding.known_compressor) return;  // VTK 9.1 refuses the file
     const auto check = [&](double last) {
         if (!(last >= 0 && last <= limit)) {
             char text[32];
@@ -399,14 +209,6 @@ void check_cell_offsets(const fs::path& path, const std::string& head, const Xml
                      " is not plausible for a file of " + std::to_string(size) + " bytes",
                  where);
         }
-    };
-    const auto unsigned_of = [&](const std::string& bytes, std::size_t at, std::size_t n) {
-        std::uint64_t v = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::size_t k = big_endian ? i : n - 1 - i;
-            v = (v << 8) | static_cast<unsigned char>(bytes[at + k]);
-        }
-        return v;
     };
     const std::string appended_tag = marks.appended == std::numeric_limits<std::uintmax_t>::max()
                                          ? std::string()
@@ -451,59 +253,9 @@ void check_cell_offsets(const fs::path& path, const std::string& head, const Xml
         const auto located = array_start(path, size, tag, tag_pos, marks, appended_tag);
         if (!located) continue;
         const ArrayBytes bytes(path, size, located->first, located->second);
-        // The array's size in bytes, and a reader of its bytes [at, at + n).
-        std::uint64_t total = 0;
-        std::function<std::optional<std::string>(std::uint64_t, std::uint64_t)> data;
-        std::vector<std::uint64_t> block_start;  // compressed: where block j starts
-        std::uint64_t header_bytes = header_size, block_size = 0, last_block = 0;
-        if (!compressed) {
-            const auto h = bytes.get(0, header_size, 0, header_size);
-            if (!h) continue;  // past the end: VTK says so
-            total = unsigned_of(*h, 0, header_size);
-            data = [&](std::uint64_t at, std::uint64_t n) {
-                return bytes.get(1, header_bytes, at, n);
-            };
-        } else {
-            // Every compressor: [blocks, block size, last block size (0: full), compressed size
-            // of each block], then the blocks.
-            const auto h = bytes.get(0, 3 * header_size, 0, 3 * header_size);
-            if (!h) continue;
-            const std::uint64_t blocks = unsigned_of(*h, 0, header_size);
-            block_size = unsigned_of(*h, header_size, header_size);
-            last_block = unsigned_of(*h, 2 * header_size, header_size);
-            if (blocks == 0 || block_size == 0 || blocks > size / header_size) continue;
-            header_bytes = (3 + blocks) * header_size;
-            const auto sizes = bytes.get(0, header_bytes, 3 * header_size, blocks * header_size);
-            if (!sizes) continue;
-            block_start.push_back(0);
-            for (std::uint64_t j = 0; j < blocks; ++j) {
-                const std::uint64_t c =
-                    unsigned_of(*sizes, static_cast<std::size_t>(j * header_size), header_size);
-                if (c > size) break;  // VTK cannot read it either
-                block_start.push_back(block_start.back() + c);
-            }
-            if (block_start.size() != blocks + 1) continue;
-            total = (blocks - 1) * block_size + (last_block != 0 ? last_block : block_size);
-            data = [&](std::uint64_t at, std::uint64_t n) -> std::optional<std::string> {
-                std::string out;
-                while (n > 0) {
-                    const std::uint64_t j = at / block_size, in_block = at % block_size;
-                    if (j + 1 >= block_start.size()) return std::nullopt;
-                    const std::uint64_t take = std::min(n, block_size - in_block);
-                    const auto z = bytes.get(1, header_bytes, block_start[j],
-                                             block_start[j + 1] - block_start[j]);
-                    if (!z) return std::nullopt;
-                    const auto part =
-                        decode_range(codec, *z, in_block, static_cast<std::size_t>(take));
-                    if (!part) return std::nullopt;
-                    out += *part;
-                    at += take;
-                    n -= take;
-                }
-                return out;
-            };
-        }
-        const std::uint64_t count = total / type_size;
+        const std::optional<StoredArray> data = StoredArray::open(bytes, encoding, size);
+        if (!data) continue;
+        const std::uint64_t count = data->total() / type_size;
         if (count == 0) continue;
         // The piece's NumberOfCells: VTK reads that many offsets.
         std::string cells_attr;
@@ -515,16 +267,9 @@ void check_cell_offsets(const fs::path& path, const std::string& head, const Xml
         std::vector<std::uint64_t> indices = {count - 1};
         if (declared >= 1 && declared < count) indices.push_back(declared - 1);
         for (const std::uint64_t k : indices) {
-            const auto value = data(k * type_size, type_size);
+            const auto value = data->read(k * type_size, type_size);
             if (!value) continue;  // VTK says what is wrong
-            const std::uint64_t raw = unsigned_of(*value, 0, type_size);
-            double last = static_cast<double>(raw);
-            if (is_signed && type_size < 8 && (raw >> (8 * type_size - 1)) != 0) {
-                last -= std::ldexp(1.0, static_cast<int>(8 * type_size));
-            } else if (is_signed && type_size == 8) {
-                last = static_cast<double>(static_cast<std::int64_t>(raw));
-            }
-            check(last);
+            check(offset_value(encoding.unsigned_of(*value, 0, type_size), is_signed, type_size));
         }
     }
 }

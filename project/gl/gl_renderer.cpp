@@ -72,7 +72,24 @@ struct GlTetRenderer::State {
     std::unique_ptr<SegmentShader> shader;
 
     void resize(int w, int h);
+    // The depth scale: 1 / the farthest ray parameter anything (mesh, opaque surfaces) reaches.
+    float depth_scale(const CameraFrame& camera) const;
+    // The index buffer grown to cover n cell slots.
+    void cover_cells(std::size_t n);
+    // Background and opaque surfaces into the opaque framebuffer: colour, ray parameter, depth.
+    void draw_opaque(const CameraFrame& camera, const Vec3& background, float depth_scale);
+    // The n cells of the last classification, in order, over the opaque layer.
+    void draw_volume(const CameraFrame& camera, float depth_scale, std::size_t n);
 };
+
+namespace {
+
+void set_uniform3(GLuint program, const char* name, const Vec3& v) {
+    glUniform3f(glGetUniformLocation(program, name), static_cast<float>(v.x),
+                static_cast<float>(v.y), static_cast<float>(v.z));
+}
+
+}  // namespace
 
 void GlTetRenderer::State::resize(int w, int h) {
     if (w == width && h == height && color_tex) return;
@@ -264,25 +281,168 @@ void GlTetRenderer::set_opaque(const std::vector<OpaqueSurface>& surfaces) {
     s.opaque_vertices = static_cast<GLsizei>(vertices.size() / 9);
 }
 
-GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const CellId> order,
-                                   const Vec3& background) {
-    State& s = *state_;
-    GlFrameStats stats;
-    stats.cells = order.size();
-    const int w = camera.width(), h = camera.height();
-    s.resize(w, h);
-
-    // Depth: the ray parameter over the farthest distance anything can be.
-    Bounds3 bounds = s.mesh ? s.mesh->bounds() : Bounds3{};
-    if (s.opaque_vertices > 0) {
-        bounds.extend(s.opaque_bounds.lo);
-        bounds.extend(s.opaque_bounds.hi);
+float GlTetRenderer::State::depth_scale(const CameraFrame& camera) const {
+    Bounds3 bounds = mesh ? mesh->bounds() : Bounds3{};
+    if (opaque_vertices > 0) {
+        bounds.extend(opaque_bounds.lo);
+        bounds.extend(opaque_bounds.hi);
     }
     const Vec3 centre = 0.5 * (bounds.lo + bounds.hi);
     const double far =
         std::max(glm::length(centre - camera.eye()) + 0.5 * bounds.diagonal(), 1e-30) * 1.01 +
         (camera.orthographic() ? 0.5 * bounds.diagonal() : 0.0);
-    const float depth_scale = static_cast<float>(1.0 / far);
+    return static_cast<float>(1.0 / far);
+}
+
+void GlTetRenderer::State::cover_cells(std::size_t n) {
+    if (ibo_cells >= n) return;
+    // Four triangles (thick, hull[k], hull[k + 1]) per cell slot.
+    const std::size_t slots = std::max<std::size_t>(n, 2 * ibo_cells);
+    std::vector<std::uint32_t> indices(slots * kIndicesPerCell);
+    for (std::size_t c = 0; c < slots; ++c) {
+        const auto b = static_cast<std::uint32_t>(c * kVerticesPerCell);
+        const std::uint32_t tri[kIndicesPerCell] = {b, b + 1, b + 2, b, b + 2, b + 3,
+                                                    b, b + 3, b + 4, b, b + 4, b + 1};
+        std::copy(tri, tri + kIndicesPerCell, &indices[c * kIndicesPerCell]);
+    }
+    glBindVertexArray(volume_vao);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),
+                 GL_STATIC_DRAW);
+    glBindVertexArray(0);
+    ibo_cells = slots;
+}
+
+void GlTetRenderer::State::draw_opaque(const CameraFrame& camera, const Vec3& background,
+                                       float scale) {
+    const int w = camera.width(), h = camera.height();
+    glViewport(0, 0, w, h);
+    glBindFramebuffer(GL_FRAMEBUFFER, opaque_fbo);
+    const float clear_color[4] = {static_cast<float>(background.x),
+                                  static_cast<float>(background.y),
+                                  static_cast<float>(background.z), 0.0f};
+    const float clear_t[4] = {kNoSurface, 0, 0, 0};
+    const float clear_depth = 1.0f;
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glClearBufferfv(GL_COLOR, 0, clear_color);
+    glClearBufferfv(GL_COLOR, 1, clear_t);
+    glClearBufferfv(GL_DEPTH, 0, &clear_depth);
+    if (opaque_vertices <= 0) return;
+    const Vec3 eye = camera.eye();
+    const GLuint p = opaque_program;
+    glUseProgram(p);
+    set_uniform3(p, "u_eye", eye);
+    set_uniform3(p, "u_right", camera.right());
+    set_uniform3(p, "u_up", camera.up());
+    set_uniform3(p, "u_forward", camera.forward());
+    // Half the view's extent at unit depth (perspective) or in world units (orthographic),
+    // measured from the camera itself so that it matches CameraFrame::project.
+    const Vec3 corner = camera.ray(w, 0).direction;
+    double half_w = 0, half_h = 0;
+    if (camera.orthographic()) {
+        const Ray r = camera.ray(w, 0);
+        half_w = glm::dot(r.origin - eye, camera.right());
+        half_h = glm::dot(r.origin - eye, camera.up());
+    } else {
+        half_w = glm::dot(corner, camera.right()) / glm::dot(corner, camera.forward());
+        half_h = glm::dot(corner, camera.up()) / glm::dot(corner, camera.forward());
+    }
+    glUniform1f(glGetUniformLocation(p, "u_half_w"), static_cast<float>(half_w));
+    glUniform1f(glGetUniformLocation(p, "u_half_h"), static_cast<float>(half_h));
+    glUniform1i(glGetUniformLocation(p, "u_ortho"), camera.orthographic() ? 1 : 0);
+    glUniform1f(glGetUniformLocation(p, "u_depth_scale"), scale);
+    glBindVertexArray(opaque_vao);
+    glDrawArrays(GL_TRIANGLES, 0, opaque_vertices);
+}
+
+void GlTetRenderer::State::draw_volume(const CameraFrame& camera, float scale, std::size_t n) {
+    const int w = camera.width(), h = camera.height();
+    // The shading uniforms, the same in both programs.
+    for (const GLuint p : {volume_program, exact_program}) {
+        glUseProgram(p);
+        glUniform1i(glGetUniformLocation(p, "u_mode"), mode);
+        glUniform1f(glGetUniformLocation(p, "u_s_lo"), static_cast<float>(tables.s_lo));
+        glUniform1f(glGetUniformLocation(p, "u_s_hi"), static_cast<float>(tables.s_hi));
+        glUniform1f(glGetUniformLocation(p, "u_max_len"), static_cast<float>(tables.max_length));
+        glUniform1f(glGetUniformLocation(p, "u_kappa_max"), static_cast<float>(tables.kappa_max));
+        glUniform1f(glGetUniformLocation(p, "u_exp_size"), static_cast<float>(tables.exp_size));
+        glUniform1f(glGetUniformLocation(p, "u_pre_scalars"),
+                    static_cast<float>(tables.pre_scalars));
+        glUniform1f(glGetUniformLocation(p, "u_pre_lengths"),
+                    static_cast<float>(tables.pre_lengths));
+        glUniform1f(glGetUniformLocation(p, "u_tf_size"), static_cast<float>(kTfSize));
+    }
+    GLint rect_loc = -1, plane_loc = -1, scalar_loc = -1;
+    if (!cells.exact_cells.empty()) {
+        // Pixel (x, y)'s ray direction, scaled to unit forward part, is linear in x and y.
+        const GLuint p = exact_program;
+        auto forward_scaled = [&](double x, double y) {
+            const Vec3 dir = camera.ray(x, y).direction;
+            return dir / glm::dot(dir, camera.forward());
+        };
+        const Vec3 dir0 = forward_scaled(0, 0);
+        set_uniform3(p, "u_dir0", dir0);
+        set_uniform3(p, "u_dir_x", (forward_scaled(w, 0) - dir0) / static_cast<double>(w));
+        set_uniform3(p, "u_dir_y", (forward_scaled(0, h) - dir0) / static_cast<double>(h));
+        glUniform1f(glGetUniformLocation(p, "u_height"), static_cast<float>(h));
+        rect_loc = glGetUniformLocation(p, "u_rect");
+        plane_loc = glGetUniformLocation(p, "u_plane");
+        scalar_loc = glGetUniformLocation(p, "u_scalar");
+    }
+    const GLuint p = volume_program;
+    glUseProgram(p);
+    glUniform2f(glGetUniformLocation(p, "u_size"), static_cast<float>(w), static_cast<float>(h));
+    glUniform1f(glGetUniformLocation(p, "u_depth_scale"), scale);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_1D, tf_tex);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, exp_tex);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_3D, pre_tex);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, t_tex);
+    glBindVertexArray(volume_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, volume_vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(cells.vertices.size() * sizeof(float)),
+                 cells.vertices.data(), GL_STREAM_DRAW);
+    // The projected cells in batches between the exact ones, each exact cell in its place
+    // (blending is order-dependent). Exact fragments sit at depth 0: the opaque surfaces cut
+    // them in the shader.
+    std::size_t next = 0;  // the first projected cell not yet drawn
+    auto draw_projected = [&](std::size_t end) {
+        if (end <= next) return;
+        glUseProgram(volume_program);
+        glBindVertexArray(volume_vao);
+        glDrawElements(
+            GL_TRIANGLES, static_cast<GLsizei>((end - next) * kIndicesPerCell), GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(next * kIndicesPerCell * sizeof(std::uint32_t)));
+    };
+    for (const ExactCell& cell : cells.exact_cells) {
+        draw_projected(cell.index);
+        glUseProgram(exact_program);
+        glBindVertexArray(exact_vao);
+        glUniform4fv(rect_loc, 1, cell.rect);
+        glUniform4fv(plane_loc, 4, cell.planes);
+        glUniform4fv(scalar_loc, 1, cell.scalar);
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+        next = cell.index + 1;
+    }
+    draw_projected(n);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE0);
+}
+
+GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const CellId> order,
+                                   const Vec3& background) {
+    State& s = *state_;
+    GlFrameStats stats;
+    stats.cells = order.size();
+    s.resize(camera.width(), camera.height());
+    const float depth_scale = s.depth_scale(camera);
 
     // CPU: classify every cell of the order into its slot of the vertex stream.
     const auto classify_start = std::chrono::steady_clock::now();
@@ -300,157 +460,14 @@ GlFrameStats GlTetRenderer::render(const CameraFrame& camera, std::span<const Ce
     stats.classify_ms = ms_since(classify_start);
 
     const auto raster_start = std::chrono::steady_clock::now();
-    if (s.ibo_cells < n) {
-        // Four triangles (thick, hull[k], hull[k + 1]) per cell slot.
-        const std::size_t cells = std::max<std::size_t>(n, 2 * s.ibo_cells);
-        std::vector<std::uint32_t> indices(cells * kIndicesPerCell);
-        for (std::size_t c = 0; c < cells; ++c) {
-            const auto b = static_cast<std::uint32_t>(c * kVerticesPerCell);
-            const std::uint32_t tri[kIndicesPerCell] = {b, b + 1, b + 2, b, b + 2, b + 3,
-                                                        b, b + 3, b + 4, b, b + 4, b + 1};
-            std::copy(tri, tri + kIndicesPerCell, &indices[c * kIndicesPerCell]);
-        }
-        glBindVertexArray(s.volume_vao);
-        glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-                     static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
-                     indices.data(), GL_STATIC_DRAW);
-        glBindVertexArray(0);
-        s.ibo_cells = cells;
-    }
-
-    // Background and opaque surfaces: colour, ray parameter, depth.
-    glViewport(0, 0, w, h);
-    glBindFramebuffer(GL_FRAMEBUFFER, s.opaque_fbo);
-    const float clear_color[4] = {static_cast<float>(background.x),
-                                  static_cast<float>(background.y),
-                                  static_cast<float>(background.z), 0.0f};
-    const float clear_t[4] = {kNoSurface, 0, 0, 0};
-    const float clear_depth = 1.0f;
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_DEPTH_TEST);
-    glDepthMask(GL_TRUE);
-    glDepthFunc(GL_LESS);
-    glClearBufferfv(GL_COLOR, 0, clear_color);
-    glClearBufferfv(GL_COLOR, 1, clear_t);
-    glClearBufferfv(GL_DEPTH, 0, &clear_depth);
-    const Vec3 eye = camera.eye();
-    auto set3 = [](GLuint program, const char* name, const Vec3& v) {
-        glUniform3f(glGetUniformLocation(program, name), static_cast<float>(v.x),
-                    static_cast<float>(v.y), static_cast<float>(v.z));
-    };
-    if (s.opaque_vertices > 0) {
-        const GLuint p = s.opaque_program;
-        glUseProgram(p);
-        set3(p, "u_eye", eye);
-        set3(p, "u_right", camera.right());
-        set3(p, "u_up", camera.up());
-        set3(p, "u_forward", camera.forward());
-        // Half the view's extent at unit depth (perspective) or in world units (orthographic),
-        // measured from the camera itself so that it matches CameraFrame::project.
-        const Vec3 corner = camera.ray(w, 0).direction;
-        double half_w = 0, half_h = 0;
-        if (camera.orthographic()) {
-            const Ray r = camera.ray(w, 0);
-            half_w = glm::dot(r.origin - eye, camera.right());
-            half_h = glm::dot(r.origin - eye, camera.up());
-        } else {
-            half_w = glm::dot(corner, camera.right()) / glm::dot(corner, camera.forward());
-            half_h = glm::dot(corner, camera.up()) / glm::dot(corner, camera.forward());
-        }
-        glUniform1f(glGetUniformLocation(p, "u_half_w"), static_cast<float>(half_w));
-        glUniform1f(glGetUniformLocation(p, "u_half_h"), static_cast<float>(half_h));
-        glUniform1i(glGetUniformLocation(p, "u_ortho"), camera.orthographic() ? 1 : 0);
-        glUniform1f(glGetUniformLocation(p, "u_depth_scale"), depth_scale);
-        glBindVertexArray(s.opaque_vao);
-        glDrawArrays(GL_TRIANGLES, 0, s.opaque_vertices);
-    }
-
+    s.cover_cells(n);
+    s.draw_opaque(camera, background, depth_scale);
     // The volume: depth test on, no depth write, premultiplied over.
     glBindFramebuffer(GL_FRAMEBUFFER, s.volume_fbo);
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    if (s.shader && n > 0) {
-        // The shading uniforms, the same in both programs.
-        for (const GLuint p : {s.volume_program, s.exact_program}) {
-            glUseProgram(p);
-            glUniform1i(glGetUniformLocation(p, "u_mode"), s.mode);
-            glUniform1f(glGetUniformLocation(p, "u_s_lo"), static_cast<float>(s.tables.s_lo));
-            glUniform1f(glGetUniformLocation(p, "u_s_hi"), static_cast<float>(s.tables.s_hi));
-            glUniform1f(glGetUniformLocation(p, "u_max_len"),
-                        static_cast<float>(s.tables.max_length));
-            glUniform1f(glGetUniformLocation(p, "u_kappa_max"),
-                        static_cast<float>(s.tables.kappa_max));
-            glUniform1f(glGetUniformLocation(p, "u_exp_size"),
-                        static_cast<float>(s.tables.exp_size));
-            glUniform1f(glGetUniformLocation(p, "u_pre_scalars"),
-                        static_cast<float>(s.tables.pre_scalars));
-            glUniform1f(glGetUniformLocation(p, "u_pre_lengths"),
-                        static_cast<float>(s.tables.pre_lengths));
-            glUniform1f(glGetUniformLocation(p, "u_tf_size"), static_cast<float>(kTfSize));
-        }
-        GLint rect_loc = -1, plane_loc = -1, scalar_loc = -1;
-        if (!s.cells.exact_cells.empty()) {
-            // Pixel (x, y)'s ray direction, scaled to unit forward part, is linear in x and y.
-            const GLuint p = s.exact_program;
-            auto forward_scaled = [&](double x, double y) {
-                const Vec3 dir = camera.ray(x, y).direction;
-                return dir / glm::dot(dir, camera.forward());
-            };
-            const Vec3 dir0 = forward_scaled(0, 0);
-            set3(p, "u_dir0", dir0);
-            set3(p, "u_dir_x", (forward_scaled(w, 0) - dir0) / static_cast<double>(w));
-            set3(p, "u_dir_y", (forward_scaled(0, h) - dir0) / static_cast<double>(h));
-            glUniform1f(glGetUniformLocation(p, "u_height"), static_cast<float>(h));
-            rect_loc = glGetUniformLocation(p, "u_rect");
-            plane_loc = glGetUniformLocation(p, "u_plane");
-            scalar_loc = glGetUniformLocation(p, "u_scalar");
-        }
-        const GLuint p = s.volume_program;
-        glUseProgram(p);
-        glUniform2f(glGetUniformLocation(p, "u_size"), static_cast<float>(w),
-                    static_cast<float>(h));
-        glUniform1f(glGetUniformLocation(p, "u_depth_scale"), depth_scale);
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_1D, s.tf_tex);
-        glActiveTexture(GL_TEXTURE1);
-        glBindTexture(GL_TEXTURE_2D, s.exp_tex);
-        glActiveTexture(GL_TEXTURE2);
-        glBindTexture(GL_TEXTURE_3D, s.pre_tex);
-        glActiveTexture(GL_TEXTURE3);
-        glBindTexture(GL_TEXTURE_2D, s.t_tex);
-        glBindVertexArray(s.volume_vao);
-        glBindBuffer(GL_ARRAY_BUFFER, s.volume_vbo);
-        glBufferData(GL_ARRAY_BUFFER,
-                     static_cast<GLsizeiptr>(s.cells.vertices.size() * sizeof(float)),
-                     s.cells.vertices.data(), GL_STREAM_DRAW);
-        // The projected cells in batches between the exact ones, each exact cell in its place
-        // (blending is order-dependent). Exact fragments sit at depth 0: the opaque surfaces
-        // cut them in the shader.
-        std::size_t next = 0;  // the first projected cell not yet drawn
-        auto draw_projected = [&](std::size_t end) {
-            if (end <= next) return;
-            glUseProgram(s.volume_program);
-            glBindVertexArray(s.volume_vao);
-            glDrawElements(
-                GL_TRIANGLES, static_cast<GLsizei>((end - next) * kIndicesPerCell), GL_UNSIGNED_INT,
-                reinterpret_cast<const void*>(next * kIndicesPerCell * sizeof(std::uint32_t)));
-        };
-        for (const ExactCell& cell : s.cells.exact_cells) {
-            draw_projected(cell.index);
-            glUseProgram(s.exact_program);
-            glBindVertexArray(s.exact_vao);
-            glUniform4fv(rect_loc, 1, cell.rect);
-            glUniform4fv(plane_loc, 4, cell.planes);
-            glUniform4fv(scalar_loc, 1, cell.scalar);
-            glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-            next = cell.index + 1;
-        }
-        draw_projected(n);
-        glBindTexture(GL_TEXTURE_2D, 0);
-        glActiveTexture(GL_TEXTURE0);
-    }
+    if (s.shader && n > 0) s.draw_volume(camera, depth_scale, n);
     glBindVertexArray(0);
     glUseProgram(0);
     glDepthMask(GL_TRUE);
