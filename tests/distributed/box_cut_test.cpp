@@ -4,7 +4,7 @@
 #include <distributed/box_cut.h>
 #include <distributed/kd_partition.h>
 #include <mesh/face_adjacency.h>
-#include <tests/pbvr/pbvr_test_scenes.h>
+#include <tests/support/test_scenes.h>
 
 #include <gtest/gtest.h>
 

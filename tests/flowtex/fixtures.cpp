@@ -1,6 +1,6 @@
 #include <mesh/tetrahedralize.h>
 #include <tests/flowtex/fixtures.h>
-#include <tests/mesh/mixed_grid.h>
+#include <tests/support/mixed_grid.h>
 
 namespace tr::testing {
 

@@ -6,7 +6,7 @@
 #include <flowvol/flow_volume.h>
 #include <mesh/tetrahedralize.h>
 #include <project/cpu_renderer.h>
-#include <tests/mesh/mixed_grid.h>
+#include <tests/support/mixed_grid.h>
 
 #include <gtest/gtest.h>
 

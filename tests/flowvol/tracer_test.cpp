@@ -2,7 +2,7 @@
 #include <flowvol/particle_tracer.h>
 #include <flowvol/point_locator.h>
 #include <mesh/tetrahedralize.h>
-#include <tests/mesh/mixed_grid.h>
+#include <tests/support/mixed_grid.h>
 
 #include <gtest/gtest.h>
 

@@ -8,8 +8,8 @@
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
 #include <project/colormap.h>
-#include <tests/mesh/mixed_grid.h>
 #include <tests/support/image_check.h>
+#include <tests/support/mixed_grid.h>
 #include <tests/support/sanitized.h>
 
 #include <gtest/gtest.h>

@@ -10,9 +10,9 @@
 #include <project/cpu_renderer.h>
 #include <project/reference_raycaster.h>
 #include <project/segment_merge.h>
-#include <tests/mesh/mixed_grid.h>
-#include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/support/image_check.h>
+#include <tests/support/mixed_grid.h>
+#include <tests/support/test_scenes.h>
 
 #include <gtest/gtest.h>
 

@@ -12,10 +12,10 @@
 #include <project/reference_raycaster.h>
 #include <project/segment_merge.h>
 #include <sort/visibility_sort.h>
-#include <tests/mesh/mixed_grid.h>
-#include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/project/alpha_check.h>
 #include <tests/support/image_check.h>
+#include <tests/support/mixed_grid.h>
+#include <tests/support/test_scenes.h>
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // cell type, tangled cells included, stays conforming.
 #include <mesh/face_adjacency.h>
 #include <mesh/tetrahedralize.h>
-#include <tests/mesh/mixed_grid.h>
+#include <tests/support/mixed_grid.h>
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // meshes.
 #include <mesh/face_adjacency.h>
 #include <mesh/tetrahedralize.h>
-#include <tests/mesh/mixed_grid.h>
+#include <tests/support/mixed_grid.h>
 
 #include <gtest/gtest.h>
 

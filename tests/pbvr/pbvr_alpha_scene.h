@@ -13,8 +13,8 @@
 #include <project/opaque_geometry.h>
 #include <project/segment_shader.h>
 #include <project/volume_scene.h>
-#include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/project/alpha_check.h>
+#include <tests/support/test_scenes.h>
 
 #include <gtest/gtest.h>
 

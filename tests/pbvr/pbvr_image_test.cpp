@@ -8,7 +8,7 @@
 #include <project/pbvr/pbvr_image.h>
 #include <project/reference_raycaster.h>
 #include <tests/pbvr/pbvr_alpha_scene.h>
-#include <tests/pbvr/pbvr_test_scenes.h>
+#include <tests/support/test_scenes.h>
 
 #include <gtest/gtest.h>
 

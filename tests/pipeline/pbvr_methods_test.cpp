@@ -7,7 +7,7 @@
 #include <pipeline/quick_scene.h>
 #include <project/colormap.h>
 #include <project/opaque_geometry.h>
-#include <tests/mesh/mixed_grid.h>
+#include <tests/support/mixed_grid.h>
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 #include <pipeline/quick_look.h>
 #include <pipeline/quick_scene.h>
 #include <project/colormap.h>
-#include <tests/mesh/mixed_grid.h>
+#include <tests/support/mixed_grid.h>
 
 #include <gtest/gtest.h>
 

@@ -9,9 +9,9 @@
 #include <project/opaque_geometry.h>
 #include <project/reference_raycaster.h>
 #include <sort/visibility_sort.h>
-#include <tests/mesh/mixed_grid.h>
 #include <tests/project/alpha_check.h>
 #include <tests/support/image_check.h>
+#include <tests/support/mixed_grid.h>
 
 #include <gtest/gtest.h>
 

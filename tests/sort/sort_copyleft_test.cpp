@@ -6,7 +6,7 @@
 #include <mesh/tetrahedralize.h>
 #include <sort/order_verifier.h>
 #include <sort/visibility_sort.h>
-#include <tests/mesh/mixed_grid.h>
+#include <tests/support/mixed_grid.h>
 #include <tests/support/sanitized.h>
 
 #if TETRENDER_HAS_CGAL

@@ -4,7 +4,7 @@
 #include <mesh/tetrahedralize.h>
 #include <sort/order_verifier.h>
 #include <sort/visibility_sort.h>
-#include <tests/mesh/mixed_grid.h>
+#include <tests/support/mixed_grid.h>
 
 #include <gtest/gtest.h>
 

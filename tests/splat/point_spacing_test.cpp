@@ -4,7 +4,7 @@
 // where one global spacing makes the dense half eight times as deep.
 #include <project/splat/point_spacing.h>
 #include <project/splat/splat_renderer.h>
-#include <tests/pbvr/pbvr_test_scenes.h>
+#include <tests/support/test_scenes.h>
 
 #include <gtest/gtest.h>
 

@@ -7,8 +7,8 @@
 #include <pipeline/methods/splat_method.h>
 #include <pipeline/pipeline.h>
 #include <project/colormap.h>
-#include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/support/temp_dir.h>
+#include <tests/support/test_scenes.h>
 
 #include <gtest/gtest.h>
 

@@ -4,9 +4,9 @@
 // flips — and both against the exact integral of a smooth field on a 64^3 lattice.
 #include <project/reference_raycaster.h>
 #include <project/splat/splat_renderer.h>
-#include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/splat/splat_inputs.h>
 #include <tests/support/sanitized.h>
+#include <tests/support/test_scenes.h>
 
 #include <gtest/gtest.h>
 

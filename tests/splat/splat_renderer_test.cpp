@@ -4,7 +4,7 @@
 // (the reference ray caster), for both kernels; opaque geometry hides what lies behind it.
 #include <project/reference_raycaster.h>
 #include <project/splat/splat_renderer.h>
-#include <tests/pbvr/pbvr_test_scenes.h>
+#include <tests/support/test_scenes.h>
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
 // per-point radius path) to a stated difference.
 #include <project/splat/splat_renderer.h>
 #include <project/splat/splat_stamps.h>
-#include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/splat/splat_inputs.h>
+#include <tests/support/test_scenes.h>
 
 #include <gtest/gtest.h>
 

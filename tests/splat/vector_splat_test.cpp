@@ -4,7 +4,7 @@
 // the cycle closes (frame k + N is frame k) and its frames differ.
 #include <project/splat/splat_renderer.h>
 #include <project/splat/vector_splat.h>
-#include <tests/pbvr/pbvr_test_scenes.h>
+#include <tests/support/test_scenes.h>
 
 #include <gtest/gtest.h>
 

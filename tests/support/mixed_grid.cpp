@@ -1,5 +1,5 @@
 #include <mesh/cell_type.h>
-#include <tests/mesh/mixed_grid.h>
+#include <tests/support/mixed_grid.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-#include <tests/pbvr/pbvr_test_scenes.h>
 #include <tests/support/freudenthal_box.h>
+#include <tests/support/test_scenes.h>
 
 #include <cmath>
 #include <limits>

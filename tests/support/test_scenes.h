@@ -1,7 +1,7 @@
 #pragma once
-// Scenes the particle-based rendering tests share: a box of tets with a constant scalar (the
-// uniform slab whose picture is known in closed form), cameras looking at it, and the expected
-// picture supersampled over each pixel.
+// Scenes the rendering tests share (particles, splats, fused volumes, the pipeline): a box of
+// tets with a constant scalar (the uniform slab whose picture is known in closed form), cameras
+// looking at it, and the expected picture supersampled over each pixel.
 
 #include <core/camera.h>
 #include <core/image.h>
