@@ -85,7 +85,7 @@ void BM_SpotNoiseFrame(benchmark::State& state) {
             reseeded += spots.reseeded();
         }
         if (part != 1) {
-            render_spots(frame, spots, raster, buffers, image);
+            render_spots(View{.camera = &frame}, spots, raster, buffers, image);
             benchmark::DoNotOptimize(image.pixels.data());
         }
     }

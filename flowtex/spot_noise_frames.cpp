@@ -109,11 +109,12 @@ Result<SpotNoiseFramesReport> spot_noise_frames(
     const CameraFrame frame(camera, options.width, options.height);
     SpotRasterOptions raster = options.raster;
     raster.dt = dt;
+    View view{.camera = &frame, .background = options.background};
     OpaqueLayer opaque;
     if (!options.opaque.empty()) {
-        opaque = render_opaque(options.opaque, frame, Vec3(raster.background));
-        raster.opaque_color = &opaque.color;
-        raster.opaque_depth = &opaque.depth;
+        opaque = render_opaque(options.opaque, frame, options.background);
+        view.opaque_color = &opaque.color;
+        view.opaque_depth = &opaque.depth;
     }
     SpotBuffers buffers;
     Image picture;
@@ -124,7 +125,7 @@ Result<SpotNoiseFramesReport> spot_noise_frames(
                                                report.reseeded += spots.reseeded();
                                            },
                                            [&](int k) {
-                                               render_spots(frame, spots, raster, buffers, picture);
+                                               render_spots(view, spots, raster, buffers, picture);
                                                return on_frame(k, picture);
                                            }));
     report.advect_ms = times.advance_ms;

@@ -34,8 +34,10 @@ struct SpotNoiseFramesOptions {
     int width = 512, height = 512;
     // Default: a perspective view (30 degrees) from (1, -1.2, 0.8) framing the spots of frame 0.
     std::optional<Camera> camera;
-    // Opaque surfaces drawn under the spots, which are depth-tested against them.
+    // Opaque surfaces drawn under the spots, which are depth-tested against them, over the
+    // background.
     std::vector<OpaqueSurface> opaque;
+    Vec3 background{0.0};
     SpotRasterOptions raster;  // its dt is set to the spots' dt
 };
 

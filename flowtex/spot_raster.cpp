@@ -43,15 +43,14 @@ std::optional<SpotEllipse> spot_ellipse(const CameraFrame& camera, const Vec3& p
     }
     e.sigma_long = std::min(options.sigma_px + options.stretch * length,
                             std::max(options.max_sigma_px, options.sigma_px));
-    if (options.depth_sums || options.opaque_depth != nullptr) {
-        const Ray ray = camera.ray(c.x, c.y);
-        e.depth = glm::dot(point - ray.origin, ray.direction);
-    }
+    const Ray ray = camera.ray(c.x, c.y);
+    e.depth = glm::dot(point - ray.origin, ray.direction);
     return e;
 }
 
-void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
-                 const SpotRasterOptions& options, SpotBuffers& buffers) {
+void splat_spots(const View& view, const SpotNoise& spots, const SpotRasterOptions& options,
+                 SpotBuffers& buffers) {
+    const CameraFrame& camera = *view.camera;
     const int w = camera.width(), h = camera.height();
     buffers.width = w;
     buffers.height = h;
@@ -120,7 +119,7 @@ void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
             }
         }
     }
-    const std::vector<double>* depth = options.opaque_depth;
+    const std::vector<double>* depth = view.opaque_depth;
     // A band's sums in rows of `stride` floats with an apron of kApron pixels either side, so
     // that rows of spots run in whole vectors of 8 (the weights outside a spot's ellipse are 0);
     // copied into the picture's rows after the band's spots. With opaque geometry the rows are
@@ -164,14 +163,15 @@ void spot_color(const SpotRasterOptions& options, float intensity, float coverag
     color = options.dark + grey * (options.light - options.dark);
 }
 
-void render_spots(const CameraFrame& camera, const SpotNoise& spots,
-                  const SpotRasterOptions& options, SpotBuffers& buffers, Image& image) {
+void render_spots(const View& view, const SpotNoise& spots, const SpotRasterOptions& options,
+                  SpotBuffers& buffers, Image& image) {
     SpotRasterOptions sums_only = options;  // the colouring needs no depth sums
     sums_only.depth_sums = false;
-    splat_spots(camera, spots, sums_only, buffers);
-    const int w = camera.width(), h = camera.height();
+    splat_spots(view, spots, sums_only, buffers);
+    const int w = view.camera->width(), h = view.camera->height();
     if (image.width != w || image.height != h) image = Image(w, h);
-    const Image* opaque = options.opaque_color;
+    const Image* opaque = view.opaque_color;
+    const Vec3f background(view.background);
     const Vec3f dark = options.dark, range = options.light - options.dark;
     parallel_for(0, static_cast<std::size_t>(h), 8, [&](std::size_t y) {
         // The row's greys and opacities (vectorised: spot_color's), then the colours over the
@@ -183,7 +183,7 @@ void render_spots(const CameraFrame& camera, const SpotNoise& spots,
                              static_cast<float>(options.opacity));
         for (int x = 0; x < w; ++x) {
             const std::size_t pixel = row + x;
-            const Vec3f base = opaque ? opaque->pixels[pixel] : options.background;
+            const Vec3f base = opaque ? opaque->pixels[pixel] : background;
             const float a = alpha[static_cast<std::size_t>(x)];
             image.pixels[pixel] =
                 a * (dark + grey[static_cast<std::size_t>(x)] * range) + (1.0f - a) * base;

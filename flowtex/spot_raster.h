@@ -6,6 +6,7 @@
 #include <core/image.h>
 #include <flowtex/detail/spot_rows.h>
 #include <flowtex/spot_noise.h>
+#include <project/view.h>
 
 #include <array>
 #include <cstdint>
@@ -27,18 +28,11 @@ struct SpotRasterOptions {
     // Mahalanobis distance from its centre (cut at q = 9, 3 sigma). Per pixel I = sum a_i w_i,
     // W = sum w_i (in spot order: deterministic); grey g = 0.5 + 0.5 tanh(contrast I /
     // sqrt(1 + W)), opacity alpha = 1 - exp(-opacity W), colour mix(dark, light, g) over the
-    // background (or the opaque geometry) by alpha.
+    // view's background (or its opaque colour) by alpha.
     double contrast = 1.2;
     double opacity = 1.5;
     Vec3f dark{0.05f, 0.08f, 0.22f};
     Vec3f light{1.0f, 0.93f, 0.72f};
-    Vec3f background{0.0f};
-    // Opaque geometry drawn first (project/opaque_geometry.h's OpaqueLayer): its colour under
-    // the spots and, per pixel, the ray parameter of its nearest surface; a spot is drawn on a
-    // pixel only where its centre's ray parameter (along the ray through the pixel holding the
-    // centre) is nearer. Null: none. Must be of the frame's size.
-    const Image* opaque_color = nullptr;
-    const std::vector<double>* opaque_depth = nullptr;
     // Whether splat_spots fills SpotBuffers::depth (a scene's depth compositing needs it; the
     // colouring does not, and render_spots skips it: a third of the raster's stores).
     bool depth_sums = true;
@@ -71,19 +65,21 @@ void spot_color(const SpotRasterOptions& options, float intensity, float coverag
 struct SpotEllipse {
     glm::dvec2 centre{0.0}, direction{1.0, 0.0};
     double sigma_long = 0, sigma_short = 0;
-    double depth = 0;  // the centre's ray parameter (0 when `options` need none: no depth sums
-                       // and no opaque depth)
+    double depth = 0;  // the centre's ray parameter
 };
 std::optional<SpotEllipse> spot_ellipse(const CameraFrame& camera, const Vec3& point,
                                         const Vec3& velocity, const SpotRasterOptions& options);
 
-// Accumulates the spots into `buffers` (resized, zeroed). Bit-identical for any thread count
-// (bands of rows, spots in order within a band). Cost: O(spots + covered pixels).
-void splat_spots(const CameraFrame& camera, const SpotNoise& spots,
-                 const SpotRasterOptions& options, SpotBuffers& buffers);
+// Accumulates the spots seen in `view` (project/view.h) into `buffers` (resized, zeroed): with
+// the view's opaque depth, a spot is drawn on a pixel only where its centre's ray parameter
+// (along the ray through the pixel holding the centre) is nearer. Bit-identical for any thread
+// count (bands of rows, spots in order within a band). Cost: O(spots + covered pixels).
+void splat_spots(const View& view, const SpotNoise& spots, const SpotRasterOptions& options,
+                 SpotBuffers& buffers);
 
-// splat_spots and the colouring into `image` (resized; every pixel written).
-void render_spots(const CameraFrame& camera, const SpotNoise& spots,
-                  const SpotRasterOptions& options, SpotBuffers& buffers, Image& image);
+// splat_spots and the colouring over the view's background or opaque colour into `image`
+// (resized; every pixel written).
+void render_spots(const View& view, const SpotNoise& spots, const SpotRasterOptions& options,
+                  SpotBuffers& buffers, Image& image);
 
 }  // namespace tr

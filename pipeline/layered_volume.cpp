@@ -2,6 +2,7 @@
 #include <core/parallel.h>
 #include <core/stopwatch.h>
 #include <pipeline/layered_volume.h>
+#include <pipeline/methods/projected_tetrahedra.h>
 #include <pipeline/scene_volumes.h>
 
 #include <algorithm>
@@ -59,7 +60,6 @@ Result<LayeredVolume> LayeredVolume::create(Pipeline& pipeline, const Scene& sce
     RenderOptions plain = options;
     plain.on_frame = nullptr;
     plain.on_flow_volume_layer = nullptr;
-    plain.opaque_override = nullptr;
     TR_TRY(RenderResult full, pipeline.render(volume, plain));
     out.full_ = std::move(full.image);
     for (std::string& note : full.notes) {
@@ -104,12 +104,10 @@ Result<LayeredVolume> LayeredVolume::create(Pipeline& pipeline, const Scene& sce
                 stop.depth[p] = depths[rank[p]][p];
             }
         }
-        RenderOptions stopped = plain;
-        stopped.opaque_override = &stop;
         stop.color = Image(scene.width, scene.height, Vec3f(0.0f));
-        TR_TRY(RenderResult black, pipeline.render(under, stopped));
+        TR_TRY(RenderResult black, render_projected_volume(pipeline, under, plain, &stop));
         stop.color = Image(scene.width, scene.height, Vec3f(1.0f));
-        TR_TRY(RenderResult white, pipeline.render(under, stopped));
+        TR_TRY(RenderResult white, render_projected_volume(pipeline, under, plain, &stop));
         renders += 2;
         Image transmittance = std::move(white.image);
         for (std::size_t p = 0; p < num_pixels; ++p) {

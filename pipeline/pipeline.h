@@ -46,10 +46,6 @@ struct RenderOptions {
     // returns the last. An error stops the render and is returned. Unset: the picture of the
     // method's `frame` only.
     std::function<Status(int frame, const Image& picture)> on_frame;
-    // Projected tetrahedra: this layer (colour and per-pixel ray parameter, of the picture's
-    // size) under the volume instead of the scene's opaque surfaces: how the animated methods
-    // split the volume's ray integral at their sheets' depths. Null: the scene's own.
-    const OpaqueLayer* opaque_override = nullptr;
     // The volume alone, as premultiplied RGBA over transparent black: RenderResult::image its
     // colour, RenderResult::alpha its opacity per pixel (the picture over a background b is
     // image + (1 - alpha) b). Opaque surfaces stop the rays but are not drawn, nor is the

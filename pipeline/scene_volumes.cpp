@@ -52,4 +52,14 @@ Result<OpaqueLayer> opaque_layer(Pipeline& pipeline, const Scene& scene, const C
     return layer;
 }
 
+View scene_view(const Scene& scene, const RenderOptions& options, const CameraFrame& frame,
+                const OpaqueLayer& layer) {
+    View view = view_over(frame, scene.background, layer);
+    if (options.transparent) {
+        view.background = Vec3(0.0);
+        view.opaque_color = nullptr;
+    }
+    return view;
+}
+
 }  // namespace tr

@@ -34,4 +34,11 @@ Result<std::unique_ptr<SceneVolumes>> load_scene_volumes(Pipeline& pipeline, con
 Result<OpaqueLayer> opaque_layer(Pipeline& pipeline, const Scene& scene, const CameraFrame& frame,
                                  NamedStats& stats);
 
+// The view a scene's volumes are drawn in (project/view.h): `frame`, over `layer` (the opaque
+// surfaces drawn, or stops standing in for them; no depth: none) or the scene's background; for
+// a transparent picture (RenderOptions::transparent), over black with the layer's depth only.
+// Points into `frame` and `layer`.
+View scene_view(const Scene& scene, const RenderOptions& options, const CameraFrame& frame,
+                const OpaqueLayer& layer);
+
 }  // namespace tr

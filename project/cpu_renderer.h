@@ -20,6 +20,7 @@
 #include <core/image.h>
 #include <mesh/tet_mesh.h>
 #include <project/segment_shader.h>
+#include <project/view.h>
 
 #include <cstddef>
 #include <span>
@@ -33,18 +34,12 @@ struct RenderStats {
     double raster_ms = 0;
 };
 
-struct RenderInputs {
+// The view (camera, background, opaque layer: project/view.h) and what is drawn in it.
+struct RenderInputs : View {
     const TetMesh* mesh = nullptr;
     std::span<const float> scalar;  // one per mesh point
     std::span<const CellId> order;  // back to front, real cells
     const SegmentShader* shader = nullptr;
-    const CameraFrame* camera = nullptr;
-    // The picture behind the volume: background colour, or opaque geometry already drawn
-    // (colour per pixel, and per pixel the ray parameter where the opaque surface is, +inf
-    // where there is none). Either may be empty: then `background` and no opaque depth.
-    Vec3 background{0.0};
-    const Image* opaque_color = nullptr;
-    const std::vector<double>* opaque_depth = nullptr;
 };
 
 // Renders the volume over the background (or opaque geometry): camera.width() x height() pixels.

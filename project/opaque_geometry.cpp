@@ -116,4 +116,13 @@ SurfaceMesh make_cylinder_surface(double radius, double z0, double z1, int sides
     return m;
 }
 
+View view_over(const CameraFrame& camera, const Vec3& background, const OpaqueLayer& layer) {
+    View view{.camera = &camera, .background = background};
+    if (!layer.depth.empty()) {
+        view.opaque_color = &layer.color;
+        view.opaque_depth = &layer.depth;
+    }
+    return view;
+}
+
 }  // namespace tr

@@ -7,6 +7,7 @@
 #include <core/camera.h>
 #include <core/image.h>
 #include <mesh/surface_mesh.h>
+#include <project/view.h>
 
 #include <limits>
 #include <vector>
@@ -29,6 +30,10 @@ struct OpaqueLayer {
 // earlier surface and triangle. Cost: O(triangles + covered pixels x triangles per tile).
 OpaqueLayer render_opaque(const std::vector<OpaqueSurface>& surfaces, const CameraFrame& camera,
                           const Vec3& background);
+
+// The view `camera` over `layer` (its colour and depth; nothing when it has no depth: no surfaces
+// were drawn) or `background` (project/view.h). Points into `camera` and `layer`.
+View view_over(const CameraFrame& camera, const Vec3& background, const OpaqueLayer& layer);
 
 // A closed polygonal cylinder (sides and caps) around the z axis: the demo's body.
 SurfaceMesh make_cylinder_surface(double radius, double z0, double z1, int sides);

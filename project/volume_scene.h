@@ -8,6 +8,7 @@
 #include <mesh/tet_mesh.h>
 #include <project/segment_shader.h>
 #include <project/transfer_function.h>
+#include <project/view.h>
 
 #include <span>
 #include <vector>
@@ -24,16 +25,11 @@ struct VolumeData {
     const SegmentShader* shader = nullptr;
 };
 
-// What is drawn and how it is seen. Several volumes may overlap in space (fused rendering: the
-// spec's optical model adds their extinctions and emissions where they overlap).
-struct VolumeScene {
+// What is drawn, in a view (camera, background, opaque layer: project/view.h). Several volumes
+// may overlap in space (fused rendering: the spec's optical model adds their extinctions and
+// emissions where they overlap).
+struct VolumeScene : View {
     std::vector<VolumeData> volumes;
-    const CameraFrame* camera = nullptr;
-    Vec3 background{0.0};
-    // Opaque geometry already drawn (project/opaque_geometry.h): colour per pixel and the ray
-    // parameter of the surface per pixel (+inf where none). Either may be null.
-    const Image* opaque_color = nullptr;
-    const std::vector<double>* opaque_depth = nullptr;
 };
 
 }  // namespace tr

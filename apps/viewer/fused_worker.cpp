@@ -158,12 +158,7 @@ void FusedWorker::begin(Job& job) {
         job.scene.volumes.push_back(
             {meshes_[v].mesh, *r.volumes[v].scalar, r.volumes[v].tf.get(), nullptr});
     }
-    job.scene.camera = &*job.frame;
-    job.scene.background = r.background;
-    if (!job.opaque.depth.empty()) {
-        job.scene.opaque_color = &job.opaque.color;
-        job.scene.opaque_depth = &job.opaque.depth;
-    }
+    static_cast<View&>(job.scene) = view_over(*job.frame, r.background, job.opaque);
     job.sum.assign(static_cast<std::size_t>(r.width) * r.height * 3, 0.0);
     job.exact_image.reset();
     job.stats = FusedFrame{};
@@ -234,12 +229,8 @@ void FusedWorker::step(Job& job, int target) {
         const CameraFrame frame(r.camera, w, h);
         OpaqueLayer opaque;
         VolumeScene scene = job.scene;
-        scene.camera = &frame;
-        if (!opaque_.empty()) {
-            opaque = render_opaque(opaque_, frame, r.background);
-            scene.opaque_color = &opaque.color;
-            scene.opaque_depth = &opaque.depth;
-        }
+        if (!opaque_.empty()) opaque = render_opaque(opaque_, frame, r.background);
+        static_cast<View&>(scene) = view_over(frame, r.background, opaque);
         const Image small = render_image_pbvr(scene, options, &image_stats);
         image = Image(r.width, r.height);  // nearest: each small pixel covers scale x scale
         for (int y = 0; y < r.height; ++y) {

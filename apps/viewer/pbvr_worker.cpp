@@ -125,12 +125,7 @@ void PbvrWorker::begin(Job& job) {
     if (!opaque_.empty()) job.opaque = render_opaque(opaque_, *job.frame, r.background);
     job.scene = VolumeScene{};
     job.scene.volumes.push_back({&mesh_, *r.scalar, r.tf.get(), nullptr});
-    job.scene.camera = &*job.frame;
-    job.scene.background = r.background;
-    if (!job.opaque.depth.empty()) {
-        job.scene.opaque_color = &job.opaque.color;
-        job.scene.opaque_depth = &job.opaque.depth;
-    }
+    static_cast<View&>(job.scene) = view_over(*job.frame, r.background, job.opaque);
     job.sum.assign(static_cast<std::size_t>(r.width) * r.height * 3, 0.0);
     job.stats = PbvrFrame{};
     job.stats.request_id = job.id;
@@ -184,9 +179,7 @@ void PbvrWorker::run_batch(Job& job, int target) {
         picture.points = settings_.splat_points;
         picture.scalar = *r.scalar;
         picture.tf = r.tf.get();
-        picture.camera = &*job.frame;
-        picture.background = r.background;
-        picture.opaque = &job.opaque;
+        picture.view = view_over(*job.frame, r.background, job.opaque);
         picture.where = "splat";
         SplatSettings splat = settings_.splat;
         splat.frame = r.splat_frame;

@@ -44,18 +44,6 @@ Status check_common(const Scene& scene, const RenderOptions& options, std::strin
     return {};
 }
 
-// The view of the particles: the camera, and the background and opaque surfaces behind them (a
-// transparent picture: black, and the surfaces' depth only).
-void set_view(VolumeScene& ps, const CameraFrame& frame, const Scene& scene,
-              const OpaqueLayer& layer, const RenderOptions& options) {
-    ps.camera = &frame;
-    ps.background = options.transparent ? Vec3(0.0) : scene.background;
-    if (!layer.depth.empty()) {
-        ps.opaque_color = options.transparent ? nullptr : &layer.color;
-        ps.opaque_depth = &layer.depth;
-    }
-}
-
 int repetitions_of(const Scene& scene) { return repetitions_of(scene, kDefaultRepetitions); }
 
 std::uint64_t seed_of(const Scene& scene) { return seed_of(scene, 1); }
@@ -129,7 +117,7 @@ class PbvrObject final : public RenderMethod {
             options.sampling = *parse_particle_sampling(string_key(scene, "sampling"));
         }
         VolumeScene& ps = loaded->scene;
-        set_view(ps, frame, scene, layer, render_options);
+        static_cast<View&>(ps) = scene_view(scene, render_options, frame, layer);
         const ObjectPbvrPlan plan = plan_object_pbvr(ps, options);
         const double candidates = plan.candidates;
         if (candidates > kMaxObjectCandidates) {
@@ -184,7 +172,7 @@ class PbvrImage final : public RenderMethod {
         options.stratified = bool_key(scene, "stratified", options.stratified);
         options.control_variate = bool_key(scene, "control_variate", options.control_variate);
         VolumeScene& ps = loaded->scene;
-        set_view(ps, frame, scene, layer, render_options);
+        static_cast<View&>(ps) = scene_view(scene, render_options, frame, layer);
         if (ps.volumes.size() == 1) {  // the segments' mean colours (pbvr_image.h)
             const auto start = Clock::now();
             ps.volumes[0].shader =

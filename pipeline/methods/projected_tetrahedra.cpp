@@ -65,31 +65,6 @@ Result<RenderResult> render_flow_volume(Pipeline& pipeline, const Scene& scene,
     return result;
 }
 
-// What the volume is drawn over: the opaque surfaces' colour and depth (or the override's), or
-// the background; for a transparent picture, black and the surfaces' depth only.
-struct Behind {
-    Vec3 background{0.0};
-    const Image* color = nullptr;
-    const std::vector<double>* depth = nullptr;
-};
-
-Behind behind_volume(const Scene& scene, const RenderOptions& options, const OpaqueLayer& layer) {
-    Behind behind;
-    if (options.opaque_override) {
-        behind.color = &options.opaque_override->color;
-        behind.depth = &options.opaque_override->depth;
-    } else if (!layer.depth.empty()) {
-        behind.color = &layer.color;
-        behind.depth = &layer.depth;
-    }
-    behind.background = scene.background;
-    if (options.transparent) {
-        behind.background = Vec3(0.0);
-        behind.color = nullptr;
-    }
-    return behind;
-}
-
 // The brute-force reference ray caster: no sort, no opaque geometry. Several volumes go by its
 // own path for them (project/reference_raycaster.h), one volume by the one-mesh path.
 Result<RenderResult> render_reference_picture(Pipeline& pipeline, const Scene& scene) {
@@ -118,8 +93,8 @@ Result<RenderResult> render_reference_picture(Pipeline& pipeline, const Scene& s
 // in one space, or one mesh whose cells have no provable visibility order. `why` is said in a
 // note and in the stats.
 Result<RenderResult> render_merged(Pipeline& pipeline, const Scene& scene,
-                                   const RenderOptions& options, std::vector<std::string> notes,
-                                   const std::string& why) {
+                                   const RenderOptions& options, const OpaqueLayer* stops,
+                                   std::vector<std::string> notes, const std::string& why) {
     RenderResult result;
     result.notes = std::move(notes);
     if (scene.volumes.size() == 1) {
@@ -138,15 +113,11 @@ Result<RenderResult> render_merged(Pipeline& pipeline, const Scene& scene,
     const CameraFrame frame(scene.camera, scene.width, scene.height);
     TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
     start = Clock::now();
-    const OpaqueLayer layer = opaque.empty() || options.opaque_override
+    const OpaqueLayer layer = opaque.empty() || stops
                                   ? OpaqueLayer{}
                                   : render_opaque(opaque.layers(), frame, scene.background);
     result.stats.set("opaque_ms", ms_since(start));
-    merged.camera = &frame;
-    const Behind behind = behind_volume(scene, options, layer);
-    merged.background = behind.background;
-    merged.opaque_color = behind.color;
-    merged.opaque_depth = behind.depth;
+    static_cast<View&>(merged) = scene_view(scene, options, frame, stops ? *stops : layer);
     SegmentMergeStats merge;
     result.image =
         render_segment_merge(merged, &merge, options.transparent ? &result.alpha : nullptr);
@@ -199,80 +170,82 @@ class ProjectedTetrahedra final : public RenderMethod {
                                 const RenderOptions& options) const override {
         if (scene.flow_volume) return render_flow_volume(pipeline, scene, options);
         if (options.reference) return render_reference_picture(pipeline, scene);
-        std::vector<std::string> notes;
-        if (scene.volumes.size() > 1) {
-            return render_merged(pipeline, scene, options, std::move(notes), "several volumes");
-        }
-        const SceneVolume& volume = scene.volumes[0];
-        RenderResult result;
-        result.notes = std::move(notes);
-        TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, pipeline.mesh(volume));
-        add_load_stats(result.stats, *loaded);
-        const CameraFrame frame(scene.camera, scene.width, scene.height);
-        TR_TRY(const ViewOrder view, pipeline.visibility_order(volume, frame, options.sort));
-        const PreparedSort& prepared = view.prepared;
-        const SortStats& sort_stats = view.stats;
-        if (wants_convexification(options.sort) && !view.exact) {
-            // An exact order was asked for and cannot be had: merge each pixel's segments by
-            // depth instead, which needs none.
-            std::string why = !prepared.sorted->failure.empty()
-                                  ? prepared.sorted->failure
-                                  : std::to_string(sort_stats.cells_in_cycles) +
-                                        " cells lie in visibility cycles of this view";
-            return render_merged(pipeline, scene, options, std::move(result.notes),
-                                 "no exact visibility order (" + why + ")");
-        }
-        if (!prepared.note.empty()) result.notes.push_back(prepared.note);
-        if (prepared.exact && !view.exact) {
-            result.notes.push_back(std::to_string(sort_stats.cells_in_cycles) +
-                                   " cells lie in visibility cycles of this view, broken by "
-                                   "rule: the order is not exact there");
-        }
-        result.stats.set("adjacency_ms", prepared.sorted->adjacency_ms);
-        result.stats.set("convexify_ms", prepared.sorted->convexify_ms);
-        TR_TRY(const std::vector<float> scalar, pipeline.scalar(volume, prepared.mesh()));
-        result.stats.set("sort_ms", sort_stats.milliseconds);
-        auto start = Clock::now();
-        const SegmentShader& shader = pipeline.shader(volume.transfer_function, options.integrator,
-                                                      longest_edge(prepared.mesh()));
-        result.stats.set("shader_ms", ms_since(start));
-        TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
-        start = Clock::now();
-        const OpaqueLayer layer = opaque.empty() || options.opaque_override
-                                      ? OpaqueLayer{}
-                                      : render_opaque(opaque.layers(), frame, scene.background);
-        result.stats.set("opaque_ms", ms_since(start));
-
-        RenderInputs in;
-        const Behind behind = behind_volume(scene, options, layer);
-        in.opaque_color = behind.color;
-        in.opaque_depth = behind.depth;
-        in.background = behind.background;
-        in.mesh = &prepared.mesh();
-        in.scalar = scalar;
-        in.order = view.order;
-        in.shader = &shader;
-        in.camera = &frame;
-        RenderStats raster;
-        result.image =
-            render_projected_tetrahedra(in, &raster, options.transparent ? &result.alpha : nullptr);
-        NamedStats& stats = result.stats;
-        stats.set("raster_ms", raster.raster_ms);
-        stats.set("cells", loaded->tets.num_real_tets());
-        stats.set("cells_drawn", raster.cells_drawn);
-        stats.set("fragments", raster.fragments);
-        stats.set("sort", std::string(sort_method_name(options.sort)));
-        stats.set("sort_exact", view.exact);
-        stats.set("compositing", "sorted");
-        stats.set("convexified", prepared.sorted->convexified);
-        stats.set("cells_by_fallback", sort_stats.by_fallback);
-        stats.set("cells_in_cycles", sort_stats.cells_in_cycles);
-        stats.set("integrator", std::string(integrator_name(options.integrator)));
-        return result;
+        return render_projected_volume(pipeline, scene, options);
     }
 };
 
 }  // namespace
+
+Result<RenderResult> render_projected_volume(Pipeline& pipeline, const Scene& scene,
+                                             const RenderOptions& options,
+                                             const OpaqueLayer* stops) {
+    std::vector<std::string> notes;
+    if (scene.volumes.size() > 1) {
+        return render_merged(pipeline, scene, options, stops, std::move(notes), "several volumes");
+    }
+    const SceneVolume& volume = scene.volumes[0];
+    RenderResult result;
+    result.notes = std::move(notes);
+    TR_TRY(const std::shared_ptr<const LoadedMesh> loaded, pipeline.mesh(volume));
+    add_load_stats(result.stats, *loaded);
+    const CameraFrame frame(scene.camera, scene.width, scene.height);
+    TR_TRY(const ViewOrder view, pipeline.visibility_order(volume, frame, options.sort));
+    const PreparedSort& prepared = view.prepared;
+    const SortStats& sort_stats = view.stats;
+    if (wants_convexification(options.sort) && !view.exact) {
+        // An exact order was asked for and cannot be had: merge each pixel's segments by
+        // depth instead, which needs none.
+        std::string why = !prepared.sorted->failure.empty()
+                              ? prepared.sorted->failure
+                              : std::to_string(sort_stats.cells_in_cycles) +
+                                    " cells lie in visibility cycles of this view";
+        return render_merged(pipeline, scene, options, stops, std::move(result.notes),
+                             "no exact visibility order (" + why + ")");
+    }
+    if (!prepared.note.empty()) result.notes.push_back(prepared.note);
+    if (prepared.exact && !view.exact) {
+        result.notes.push_back(std::to_string(sort_stats.cells_in_cycles) +
+                               " cells lie in visibility cycles of this view, broken by "
+                               "rule: the order is not exact there");
+    }
+    result.stats.set("adjacency_ms", prepared.sorted->adjacency_ms);
+    result.stats.set("convexify_ms", prepared.sorted->convexify_ms);
+    TR_TRY(const std::vector<float> scalar, pipeline.scalar(volume, prepared.mesh()));
+    result.stats.set("sort_ms", sort_stats.milliseconds);
+    auto start = Clock::now();
+    const SegmentShader& shader = pipeline.shader(volume.transfer_function, options.integrator,
+                                                  longest_edge(prepared.mesh()));
+    result.stats.set("shader_ms", ms_since(start));
+    TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
+    start = Clock::now();
+    const OpaqueLayer layer = opaque.empty() || stops
+                                  ? OpaqueLayer{}
+                                  : render_opaque(opaque.layers(), frame, scene.background);
+    result.stats.set("opaque_ms", ms_since(start));
+
+    RenderInputs in;
+    static_cast<View&>(in) = scene_view(scene, options, frame, stops ? *stops : layer);
+    in.mesh = &prepared.mesh();
+    in.scalar = scalar;
+    in.order = view.order;
+    in.shader = &shader;
+    RenderStats raster;
+    result.image =
+        render_projected_tetrahedra(in, &raster, options.transparent ? &result.alpha : nullptr);
+    NamedStats& stats = result.stats;
+    stats.set("raster_ms", raster.raster_ms);
+    stats.set("cells", loaded->tets.num_real_tets());
+    stats.set("cells_drawn", raster.cells_drawn);
+    stats.set("fragments", raster.fragments);
+    stats.set("sort", std::string(sort_method_name(options.sort)));
+    stats.set("sort_exact", view.exact);
+    stats.set("compositing", "sorted");
+    stats.set("convexified", prepared.sorted->convexified);
+    stats.set("cells_by_fallback", sort_stats.by_fallback);
+    stats.set("cells_in_cycles", sort_stats.cells_in_cycles);
+    stats.set("integrator", std::string(integrator_name(options.integrator)));
+    return result;
+}
 
 std::unique_ptr<RenderMethod> make_projected_tetrahedra_method() {
     return std::make_unique<ProjectedTetrahedra>();

@@ -98,12 +98,7 @@ void fill_common(Inputs& in, std::span<const Vec3> points, std::span<const float
     in.scalar = scalar;
     in.spacing = spacing;
     in.tf = picture.tf;
-    in.camera = picture.camera;
-    in.background = picture.background;
-    if (picture.opaque && !picture.opaque->depth.empty()) {
-        in.opaque_color = &picture.opaque->color;
-        in.opaque_depth = &picture.opaque->depth;
-    }
+    static_cast<View&>(in) = picture.view;
 }
 
 // The stats both kinds of splats report.
@@ -206,7 +201,7 @@ class Splat final : public RenderMethod {
     }
 
     Result<RenderResult> render(Pipeline& pipeline, const Scene& scene,
-                                const RenderOptions&) const override {
+                                const RenderOptions& options) const override {
         RenderResult result;
         TR_TRY(const std::unique_ptr<SceneVolumes> loaded,
                load_scene_volumes(pipeline, scene, result.stats));
@@ -216,9 +211,7 @@ class Splat final : public RenderMethod {
         picture.mesh = &loaded->meshes[0]->tets;
         picture.scalar = loaded->scalars[0];
         picture.tf = &scene.volumes[0].transfer_function;
-        picture.camera = &frame;
-        picture.background = scene.background;
-        picture.opaque = &layer;
+        picture.view = scene_view(scene, options, frame, layer);
         picture.where = scene.volumes[0].mesh.string();
         TR_TRY(result.image,
                render_splat_picture(picture, splat_settings(scene), &result.stats, &result.notes));

@@ -58,9 +58,7 @@ struct SplatPicture {
     std::size_t points = 0;
     std::span<const float> scalar;
     const TransferFunction* tf = nullptr;
-    const CameraFrame* camera = nullptr;
-    Vec3 background{0.0};
-    const OpaqueLayer* opaque = nullptr;  // or null
+    View view;  // camera, background, opaque layer (project/view.h)
     std::string where;
 };
 

@@ -61,11 +61,11 @@ const MethodKeys kSpotNoiseKeys{
     .uses_seed = true};
 
 // The spots of this frame as one layer of fragments, each pixel at its weighted mean spot depth.
-void spot_fragments(const CameraFrame& frame, const SpotNoise& spots,
-                    const SpotRasterOptions& raster, SpotBuffers& buffers, SurfaceFragments& f,
-                    std::vector<double>& depths) {
-    splat_spots(frame, spots, raster, buffers);
-    const std::size_t num_pixels = static_cast<std::size_t>(frame.width()) * frame.height();
+void spot_fragments(const View& view, const SpotNoise& spots, const SpotRasterOptions& raster,
+                    SpotBuffers& buffers, SurfaceFragments& f, std::vector<double>& depths) {
+    splat_spots(view, spots, raster, buffers);
+    const std::size_t num_pixels =
+        static_cast<std::size_t>(view.camera->width()) * view.camera->height();
     f.color.assign(num_pixels, Vec3f(0.0f));
     f.alpha.assign(num_pixels, 0.0f);
     depths.assign(num_pixels, std::numeric_limits<double>::infinity());
@@ -124,7 +124,10 @@ class SpotNoiseMethod final : public RenderMethod {
         SpotRasterOptions raster;
         raster.dt = run->report.dt;
         raster.opacity = number_key(scene, "spot_opacity", raster.opacity);
-        if (!opaque.depth.empty()) raster.opaque_depth = &opaque.depth;
+        // The spots are depth-tested against the opaque surfaces; their colours are composited
+        // over them with the volume's layers (layered_volume.h).
+        View view{.camera = &frame};
+        if (!opaque.depth.empty()) view.opaque_depth = &opaque.depth;
         const int last = last_frame(scene, options);
         TR_TRY_STATUS(check_layers_memory(scene, 1));
         SpotBuffers buffers;
@@ -138,7 +141,7 @@ class SpotNoiseMethod final : public RenderMethod {
         };
         auto draw = [&](int k) -> Status {
             const auto drawing = Clock::now();
-            spot_fragments(frame, spots, raster, buffers, fragments[0], depths[0]);
+            spot_fragments(view, spots, raster, buffers, fragments[0], depths[0]);
             raster_ms += ms_since(drawing);
             // The spots move: the volume is split at their new depths every frame.
             NamedStats volume_stats;

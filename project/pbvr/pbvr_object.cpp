@@ -16,8 +16,8 @@ using Clock = std::chrono::steady_clock;
 
 constexpr std::size_t kCellsPerChunk = 2048;
 
-// The view's geometry the density needs.
-struct View {
+// The view's geometry the particle density needs.
+struct DensityView {
     const CameraFrame* camera;
     bool orthographic;
     Vec3 eye, forward;
@@ -27,8 +27,8 @@ struct View {
     int subpixel_level;
 };
 
-View make_view(const CameraFrame& camera, int subpixel_level, double scene_size) {
-    View view;
+DensityView make_view(const CameraFrame& camera, int subpixel_level, double scene_size) {
+    DensityView view;
     view.camera = &camera;
     view.orthographic = camera.orthographic();
     view.eye = camera.eye();
@@ -58,10 +58,12 @@ View make_view(const CameraFrame& camera, int subpixel_level, double scene_size)
 }
 
 // The depth along the view direction (perspective: from the eye).
-double depth_of(const View& view, const Vec3& x) { return glm::dot(x - view.eye, view.forward); }
+double depth_of(const DensityView& view, const Vec3& x) {
+    return glm::dot(x - view.eye, view.forward);
+}
 
 // rho's denominator at x: the sub-pixel footprint times cos(theta).
-double footprint(const View& view, const Vec3& x, double z) {
+double footprint(const DensityView& view, const Vec3& x, double z) {
     if (view.orthographic) return view.footprint_scale * view.footprint_scale;
     const double side = view.footprint_scale * z;
     const double cos_theta = z / glm::length(x - view.eye);
@@ -110,7 +112,7 @@ Cell cell_of(const VolumeData& v, CellId t) {
     return c;
 }
 
-double density_at(const VolumeData& v, const View& view, const Vec3& x, double s) {
+double density_at(const VolumeData& v, const DensityView& view, const Vec3& x, double s) {
     const double z = depth_of(view, x);
     if (!view.orthographic && z < view.near) return 0.0;
     return v.tf->extinction(s) / footprint(view, x, z);
@@ -118,7 +120,7 @@ double density_at(const VolumeData& v, const View& view, const Vec3& x, double s
 
 // The 32-point quadrature of rho over a cell: 8 sub-tets by midpoint subdivision, the
 // degree-2 four-point rule on each.
-double integrate_density(const VolumeData& v, const View& view, const Cell& c) {
+double integrate_density(const VolumeData& v, const DensityView& view, const Cell& c) {
     // The 10 nodes: corners 0..3, then edge midpoints (01, 02, 03, 12, 13, 23).
     Vec3 p[10];
     double s[10];
@@ -159,7 +161,7 @@ std::size_t floor_bernoulli(double mean, double u) {
 // order), then resolved into the pixels' running sums.
 class ParticleBuffer {
   public:
-    ParticleBuffer(const View& view, const VolumeScene& scene)
+    ParticleBuffer(const DensityView& view, const VolumeScene& scene)
         : view_(view),
           scene_(scene),
           sub_width_(view.camera->width() * view.subpixel_level),
@@ -264,7 +266,7 @@ class ParticleBuffer {
         return true;
     }
 
-    const View& view_;
+    const DensityView& view_;
     const VolumeScene& scene_;
     int sub_width_, sub_height_;
     std::vector<std::atomic<std::uint64_t>> slots_;
@@ -275,7 +277,7 @@ class ParticleBuffer {
 struct Generator {
     const VolumeData& volume;
     std::size_t volume_index;
-    const View& view;
+    const DensityView& view;
     const ObjectPbvrOptions& options;
     const std::vector<float>& bound;  // per cell: the expected candidates (kExact) or particles
 
@@ -352,7 +354,7 @@ struct Generator {
 // (kExact: the cell's volume times the largest density over it), the density at the centroid
 // times the volume (kUniform) or the density's integral (kMetropolis). Zero for cells wholly
 // out of view or transparent.
-std::vector<float> cell_bounds(const VolumeData& v, const View& view,
+std::vector<float> cell_bounds(const VolumeData& v, const DensityView& view,
                                const ParticleSampling sampling) {
     std::vector<float> bound(v.mesh->num_real_tets(), 0.0f);
     const CameraFrame& camera = *view.camera;
@@ -437,12 +439,12 @@ std::optional<ParticleSampling> parse_particle_sampling(std::string_view name) {
 
 double expected_particles(const VolumeData& volume, CellId t, const CameraFrame& camera,
                           int subpixel_level) {
-    const View view = make_view(camera, subpixel_level, volume.mesh->bounds().diagonal());
+    const DensityView view = make_view(camera, subpixel_level, volume.mesh->bounds().diagonal());
     return integrate_density(volume, view, cell_of(volume, t));
 }
 
 ObjectPbvrPlan plan_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& options) {
-    const View view =
+    const DensityView view =
         make_view(*scene.camera, std::max(1, options.subpixel_level), scene_size(scene));
     ObjectPbvrPlan plan;
     for (const VolumeData& v : scene.volumes) {
@@ -463,7 +465,7 @@ Image render_object_pbvr(const VolumeScene& scene, const ObjectPbvrOptions& opti
     const int w = camera.width(), h = camera.height();
     const int level = std::max(1, options.subpixel_level);
     const int repetitions = std::max(1, options.repetitions);
-    const View view = make_view(camera, level, scene_size(scene));
+    const DensityView view = make_view(camera, level, scene_size(scene));
     ParticleBuffer buffer(view, scene);
     const ObjectPbvrPlan own = plan ? ObjectPbvrPlan{} : plan_object_pbvr(scene, options);
     const std::vector<std::vector<float>>& bounds = plan ? plan->bounds : own.bounds;
@@ -540,7 +542,7 @@ ObjectParticleSet ObjectParticleSet::generate(const VolumeScene& scene,
 void ObjectParticleSet::generate_cells(const VolumeScene& scene,
                                        const std::vector<std::vector<char>>* only,
                                        const ObjectPbvrPlan* plan) {
-    const View view = make_view(*frame_, options_.subpixel_level, scene_size(scene));
+    const DensityView view = make_view(*frame_, options_.subpixel_level, scene_size(scene));
     ObjectPbvrOptions options = options_;
     // The first generation draws what render_object_pbvr draws; regenerations new numbers.
     if (generation_ > 0) options.seed = hash_key(options_.seed, generation_);
@@ -596,7 +598,7 @@ bool ObjectParticleSet::reusable_for(const CameraFrame& camera) const {
 Image ObjectParticleSet::render(const VolumeScene& scene, ObjectPbvrStats* stats) const {
     const CameraFrame& camera = *scene.camera;
     const int w = camera.width(), h = camera.height();
-    const View view = make_view(camera, options_.subpixel_level, scene_size(scene));
+    const DensityView view = make_view(camera, options_.subpixel_level, scene_size(scene));
     ParticleBuffer buffer(view, scene);
     std::vector<double> sum(static_cast<std::size_t>(w) * h * 3, 0.0);
     std::atomic<std::size_t> drawn{0};

@@ -41,6 +41,7 @@
 #include <core/image.h>
 #include <project/splat/splat_kernel.h>
 #include <project/transfer_function.h>
+#include <project/view.h>
 
 #include <cstddef>
 #include <span>
@@ -50,7 +51,8 @@ namespace tr {
 
 enum class SplatCompositing { kPerSplat, kSheetBuffer };
 
-struct SplatInputs {
+// The view (camera, background, opaque layer: project/view.h) and the points splatted in it.
+struct SplatInputs : View {
     std::span<const Vec3> points;
     std::span<const float> scalar;  // one per point
     double spacing = 1.0;           // h: the lattice spacing the kernel is scaled to (> 0)
@@ -59,12 +61,7 @@ struct SplatInputs {
     std::span<const float> radius;
     const TransferFunction* tf = nullptr;
     const SplatFootprint* footprint = nullptr;  // the kernel's table
-    const CameraFrame* camera = nullptr;
-    Vec3 background{0.0};
     SplatCompositing compositing = SplatCompositing::kPerSplat;
-    // Opaque geometry already drawn (project/opaque_geometry.h), or null.
-    const Image* opaque_color = nullptr;
-    const std::vector<double>* opaque_depth = nullptr;
 };
 
 struct SplatStats {

@@ -28,6 +28,7 @@
 #include <core/camera.h>
 #include <core/image.h>
 #include <project/transfer_function.h>
+#include <project/view.h>
 
 #include <cstddef>
 #include <span>
@@ -58,23 +59,19 @@ class StreakTexture {
     StreakTextureOptions options_;
 };
 
-struct VectorSplatInputs {
+// The view (camera, background, opaque layer: project/view.h) and the points drawn in it.
+struct VectorSplatInputs : View {
     std::span<const Vec3> points;
     std::span<const float> scalar;  // one per point
     std::span<const Vec3> vectors;  // one per point
     double spacing = 1.0;           // h (> 0), world units
     const TransferFunction* tf = nullptr;
     const StreakTexture* texture = nullptr;
-    const CameraFrame* camera = nullptr;
     int frame = 0;                  // which texture of the cycle (modulo the cycle)
     double half_width = 0.75;       // in spacings
     double min_half_length = 0.75;  // in spacings, at zero projected speed
     double max_half_length = 2.5;   // in spacings, at the fastest
     double density = 1.0;           // optical depth per kappa h at T = 1
-    Vec3 background{0.0};
-    // Opaque geometry already drawn (project/opaque_geometry.h), or null.
-    const Image* opaque_color = nullptr;
-    const std::vector<double>* opaque_depth = nullptr;
 };
 
 struct VectorSplatStats {

@@ -270,7 +270,7 @@ TEST(SpotNoise, EllipsesPointAlongTheProjectedVelocity) {
     r.stretch = 1.0;
     r.dt = 0.04;  // at r = 1: 5 px a frame, sigma_long 6.6 px
     SpotBuffers buffers;
-    splat_spots(frame, spots, r, buffers);
+    splat_spots(View{.camera = &frame}, spots, r, buffers);
     double worst = 0;
     int checked = 0;
     for (std::size_t i = 0; i < spots.size(); ++i) {
@@ -338,7 +338,7 @@ TEST(SpotNoise, EachPixelsCoverageIsTheSumOfTheSpotsGaussians) {
         SpotRasterOptions r;
         r.dt = dt;  // 0: every spot round; 0.1 at r = 1: sigma_long 7.9 px
         SpotBuffers buffers;
-        splat_spots(frame, spots, r, buffers);
+        splat_spots(View{.camera = &frame}, spots, r, buffers);
         std::vector<double> expected(256 * 256, 0.0);
         std::vector<char> on_cut(256 * 256, 0);
         for (std::size_t i = 0; i < spots.size(); ++i) {
@@ -450,32 +450,33 @@ TEST(SpotNoise, OpaqueGeometryInFrontHidesSpotsAndThreadsDoNotMatter) {
     const CameraFrame frame(framing_camera(f.mesh.bounds(), Vec3(0.3, -1, 1)), 96, 96);
     SpotRasterOptions r;
     SpotBuffers open, hidden;
-    splat_spots(frame, spots, r, open);
+    View view{.camera = &frame};
+    splat_spots(view, spots, r, open);
     // A surface at ray parameter 1 (the eye is farther than that from every spot) hides all.
     const std::vector<double> near(96 * 96, 1.0), far(96 * 96, 1e300);
     const Image grey(96, 96, Vec3f(0.5f));
-    r.opaque_color = &grey;
-    r.opaque_depth = &near;
+    view.opaque_color = &grey;
+    view.opaque_depth = &near;
     Image picture;
-    render_spots(frame, spots, r, hidden, picture);
+    render_spots(view, spots, r, hidden, picture);
     double covered = 0;
     for (float w : open.coverage) covered += w;
     EXPECT_GT(covered, 1000.0);
     for (float w : hidden.coverage) ASSERT_EQ(w, 0.0f);
     for (const Vec3f& p : picture.pixels) ASSERT_EQ(p, Vec3f(0.5f));
-    r.opaque_depth = &far;
-    splat_spots(frame, spots, r, hidden);
+    view.opaque_depth = &far;
+    splat_spots(view, spots, r, hidden);
     EXPECT_EQ(hidden.coverage, open.coverage);
 
     // Advection and raster are the same with one thread.
     spots.advance();
-    splat_spots(frame, spots, r, open);
+    splat_spots(view, spots, r, open);
     const std::vector<Vec3> positions(spots.positions().begin(), spots.positions().end());
     set_thread_count(1);
     SpotNoise serial = SpotNoise::create(f.mesh, locator, z_field(f), flow, o).value();
     serial.advance();
     SpotBuffers one;
-    splat_spots(frame, serial, r, one);
+    splat_spots(view, serial, r, one);
     set_thread_count(0);
     EXPECT_TRUE(std::equal(positions.begin(), positions.end(), serial.positions().begin()));
     EXPECT_EQ(one.coverage, open.coverage);
