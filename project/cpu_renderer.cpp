@@ -44,14 +44,12 @@ std::size_t draw_st_triangle(StVertex (&tri)[3], const ScreenBox& b, const TileR
         std::swap(tri[1], tri[2]);
         area = -area;
     }
-    const double lo_x = std::min({tri[0].x, tri[1].x, tri[2].x});
-    const double hi_x = std::max({tri[0].x, tri[1].x, tri[2].x});
-    const double lo_y = std::min({tri[0].y, tri[1].y, tri[2].y});
-    const double hi_y = std::max({tri[0].y, tri[1].y, tri[2].y});
-    const int x0 = std::max(b.x0, static_cast<int>(std::ceil(lo_x - 0.5)));
-    const int x1 = std::min(b.x1, static_cast<int>(std::floor(hi_x - 0.5)));
-    const int y0 = std::max(b.y0, static_cast<int>(std::ceil(lo_y - 0.5)));
-    const int y1 = std::min(b.y1, static_cast<int>(std::floor(hi_y - 0.5)));
+    const ScreenBox box = pixels_centred_in(std::min({tri[0].x, tri[1].x, tri[2].x}),
+                                            std::min({tri[0].y, tri[1].y, tri[2].y}),
+                                            std::max({tri[0].x, tri[1].x, tri[2].x}),
+                                            std::max({tri[0].y, tri[1].y, tri[2].y}))
+                              .clipped_to(b);
+    const int x0 = box.x0, x1 = box.x1, y0 = box.y0, y1 = box.y1;
     std::size_t fragments = 0;
     for (int y = y0; y <= y1; ++y) {
         for (int x = x0; x <= x1; ++x) {
@@ -163,9 +161,7 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats,
         std::vector<int> on_edges;  // pixels of the current cell decided by the exact test
         for (std::uint32_t index : bins.bins[tile]) {
             const CellId t = in.order[index];
-            ScreenBox b = bins.boxes[index];
-            b.x0 = std::max(b.x0, rays.x0), b.y0 = std::max(b.y0, rays.y0);
-            b.x1 = std::min(b.x1, rays.x1), b.y1 = std::min(b.y1, rays.y1);
+            const ScreenBox b = bins.boxes[index].clipped_to({rays.x0, rays.y0, rays.x1, rays.y1});
             // Face planes, the scalar's gradient and the exact segments of pixel rays.
             const CellFragments cell(mesh, in.scalar, t, camera);
             const TetPlanes& planes = cell.planes();

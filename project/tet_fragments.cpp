@@ -25,16 +25,11 @@ ScreenBox screen_box(const TetMesh& mesh, CellId t, const CameraFrame& camera, b
     }
     if (!front) return {1, 1, 0, 0};
     if (behind) return {0, 0, camera.width() - 1, camera.height() - 1};
-    // Pixel i's centre is at i + 0.5: the centres in [x0, x1] are i = ceil(x0 - 0.5) ...
-    // (padded a little: the exact ray test decides, the box only has to be conservative).
+    // The pixels whose centres may lie in the projection (padded a little: the exact ray test
+    // decides, the box only has to be conservative).
     constexpr double kPad = 1e-6;
-    ScreenBox box{static_cast<int>(std::ceil(x0 - 0.5 - kPad)),
-                  static_cast<int>(std::ceil(y0 - 0.5 - kPad)),
-                  static_cast<int>(std::floor(x1 - 0.5 + kPad)),
-                  static_cast<int>(std::floor(y1 - 0.5 + kPad))};
-    box.x0 = std::max(box.x0, 0), box.y0 = std::max(box.y0, 0);
-    box.x1 = std::min(box.x1, camera.width() - 1), box.y1 = std::min(box.y1, camera.height() - 1);
-    return box;
+    return pixels_centred_in(x0, y0, x1, y1, kPad)
+        .clipped_to({0, 0, camera.width() - 1, camera.height() - 1});
 }
 
 }  // namespace

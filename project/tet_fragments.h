@@ -11,6 +11,7 @@
 // "positive"), so shared faces are neither skipped nor counted twice.
 
 #include <core/camera.h>
+#include <core/screen_box.h>
 #include <mesh/tet_mesh.h>
 #include <project/tet_projection.h>
 
@@ -23,17 +24,11 @@ namespace tr {
 
 inline constexpr int kFragmentTile = 32;  // tiles are kFragmentTile x kFragmentTile pixels
 
-// Pixels whose centres may lie in a cell's projection, inclusive; empty when x0 > x1.
-struct ScreenBox {
-    int x0, y0, x1, y1;
-    bool empty() const { return x0 > x1 || y0 > y1; }
-};
-
 // Cells binned into screen tiles: each tile's list holds indices into the `cells` given, in
 // their order (so compositing in a visibility order stays in order within a tile).
 struct TileBins {
     int tiles_x = 0, tiles_y = 0;
-    std::vector<ScreenBox> boxes;                  // per entry of `cells`
+    std::vector<ScreenBox> boxes;                  // per entry of `cells`: its pixels (below)
     std::vector<std::uint8_t> behind_eye;          // per entry: reaches behind a perspective eye
     std::vector<std::vector<std::uint32_t>> bins;  // per tile, row-major
     std::size_t cells_drawn = 0;                   // entries whose box is not empty
