@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <unistd.h>
 #include <variant>
@@ -79,6 +80,16 @@ Status check_output_path(const std::string& path, const std::vector<std::string>
     if (!std::filesystem::is_directory(folder, ec)) {
         return make_error(ErrorCode::kInvalidArgument,
                           "the output's folder '" + folder.string() + "' does not exist", path);
+    }
+    // A file made and removed: a folder the output cannot be written in is found now, not after
+    // the work (and after any frames were written).
+    const std::filesystem::path probe =
+        folder / (".tetrender-write-probe-" + std::to_string(::getpid()));
+    const bool made = std::ofstream(probe, std::ios::binary).is_open();
+    std::filesystem::remove(probe, ec);
+    if (!made) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "cannot write in the output's folder '" + folder.string() + "'", path);
     }
     return {};
 }

@@ -30,7 +30,8 @@ bool is_scene_file(const std::string& path);
 bool parse_image_size(const std::string& text, int& width, int& height);
 
 // Checks, before any work, that `path` can be written: its extension is one of `extensions`
-// (".png", ...; case-sensitive) and its folder exists. Error kInvalidArgument saying which.
+// (".png", ...; case-sensitive), its folder exists and a file can be made in it (a probe file,
+// removed at once). Error kInvalidArgument saying which.
 Status check_output_path(const std::string& path, const std::vector<std::string>& extensions);
 
 // The name the messages below start with: "tetrender" (default) or "tetrender-view".

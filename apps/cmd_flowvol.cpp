@@ -60,6 +60,12 @@ int run_flowvol(FlowvolArgs args) {
     if (const Status ok = check_output_path(args.output, {".png", ".pfm"}); !ok.ok()) {
         return report_usage(ok.error());
     }
+    if (!args.mesh_out.empty()) {
+        if (const Status ok = check_output_path(args.mesh_out, {".vtu"}); !ok.ok()) {
+            return report_usage(
+                make_error(ok.error().code, "--mesh-out: " + ok.error().message, args.mesh_out));
+        }
+    }
     PipelineOptions pipeline_options;
     pipeline_options.progress = terminal_progress();
     Pipeline pipeline(pipeline_options);

@@ -48,6 +48,9 @@ int run_tetrahedralize(const TetrahedralizeArgs& args) {
                      "tetrender: --delaunay, --tetgen and --convexify exclude each other\n");
         return kExitUsage;
     }
+    if (const Status ok = check_output_path(args.output, {".vtu"}); !ok.ok()) {
+        return report_usage(ok.error());
+    }
     TetMesh mesh;
     WriteVtuOptions write_options;
     if (args.tetgen) {

@@ -179,6 +179,12 @@ int viewer_options(const Args& args, ViewerOptions& options, Integrator& integra
         }
     }
     const bool headless = !args.screenshot.empty();
+    if (headless) {
+        if (const Status ok = apps::check_output_path(args.screenshot, {".png", ".pfm"});
+            !ok.ok()) {
+            return apps::report_usage(ok.error());
+        }
+    }
     if (!args.frames_dir.empty()) {
         std::error_code made;
         std::filesystem::create_directories(args.frames_dir, made);

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -156,6 +157,50 @@ TEST(CliBadInput, FlowvolNumbersSayWhatIsWrong) {
     const testing::CliRun good = run_cli(base + "--seed-normal 0,0,1 --dt 0.01");
     EXPECT_EQ(good.exit_code, 1) << good.err;
     EXPECT_NE(good.err.find("missing.vtu"), std::string::npos) << good.err;
+}
+
+// Outputs checked before the work (issue 27): a mesh written under a picture's name
+// (`tetrahedralize -o t.png`, `flowvol --mesh-out x.png` wrote a .vtu there), and a picture that
+// cannot be written after the frames were (`flowvol --frames DIR -o UNWRITABLE` left the frames
+// behind). Each is refused before the mesh is read (it is missing here), in one line, exit 2,
+// with nothing written: no picture, no mesh, no frames folder.
+TEST(CliBadInput, OutputsAreCheckedBeforeTheWork) {
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
+    const std::string missing = shell_quote(dir + "/missing.vtu");
+    const std::string flowvol = "flowvol " + missing +
+                                " --vectors V --seed-center 0,0,0 --seed-size 1,1 -o " +
+                                shell_quote(dir + "/fv.png") + " ";
+    const struct {
+        std::string args;
+        std::string expected;  // in the one line
+    } cases[] = {
+        {"tetrahedralize " + missing + " -o " + shell_quote(dir + "/t.png"),
+         "the output must end in .vtu, not '.png'"},
+        {flowvol + "--mesh-out " + shell_quote(dir + "/x.png"),
+         "--mesh-out: the output must end in .vtu, not '.png'"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.args);
+        const testing::CliRun run = run_cli(c.args);
+        EXPECT_EQ(run.exit_code, 2);
+        EXPECT_NE(run.err.find(c.expected), std::string::npos) << run.err;
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    }
+    // A folder nothing can be made in, even by root: /proc.
+    if (!std::filesystem::is_directory("/proc")) GTEST_SKIP() << "no /proc to write in";
+    const std::string frames = dir + "/frames";
+    const testing::CliRun run = run_cli("flowvol " + missing +
+                                        " --vectors V --seed-center 0,0,0 --seed-size 1,1 "
+                                        "--frames " +
+                                        shell_quote(frames) + " -o /proc/fv.png");
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_NE(run.err.find("cannot write in the output's folder '/proc'"), std::string::npos)
+        << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(frames));
+    // Nothing at all was left in the test's folder.
+    EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
 // Numeric options of every command (issue 13): CLI11's PositiveNumber / NonNegativeNumber printed

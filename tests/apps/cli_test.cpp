@@ -360,9 +360,12 @@ TEST(CliBadInput, NoHalfWrittenOutputOnFailure) {
     expect_one_line_error(run);
     EXPECT_FALSE(std::filesystem::exists(out));
     const std::string in = write_file(dir, "two.vtk", kTwoHexes);
+    // An output that cannot be written is a usage error found before the mesh is read.
     auto unwritable = run_cli("tetrahedralize " + shell_quote(in) + " -o " +
                               shell_quote(dir + "/no/such/dir/out.vtu"));
-    expect_one_line_error(unwritable);
+    EXPECT_EQ(unwritable.exit_code, 2) << unwritable.err;
+    EXPECT_EQ(unwritable.err.find('\n'), unwritable.err.size() - 1) << unwritable.err;
+    EXPECT_NE(unwritable.err.find("does not exist"), std::string::npos) << unwritable.err;
 }
 
 }  // namespace

@@ -328,14 +328,25 @@ TEST(Viewer, BadFilesAndCommandLines) {
     EXPECT_NE(run.out.find("r reset"), std::string::npos);
 }
 
+// The screenshot's path is checked before the scene is loaded (issue 27: every output before
+// the work): a usage error, one line, no file.
 TEST(Viewer, UnwritableScreenshotLeavesNoFile) {
     if (!require_xvfb()) GTEST_SKIP() << "no xvfb-run";
     const TestScene t = make_test_scene(2);
-    const std::string out = t.dir + "/no/such/dir/x.png";
-    const auto run = run_viewer(shell_quote(t.scene) + " --screenshot " + shell_quote(out));
-    EXPECT_EQ(run.exit_code, 1);
-    EXPECT_NE(run.err.find("x.png"), std::string::npos) << run.err;
-    EXPECT_FALSE(std::filesystem::exists(out));
+    const struct {
+        std::string out, expected;
+    } cases[] = {
+        {t.dir + "/no/such/dir/x.png", "does not exist"},
+        {t.dir + "/x.jpg", "must end in .png, .pfm"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.out);
+        const auto run = run_viewer(shell_quote(t.scene) + " --screenshot " + shell_quote(c.out));
+        EXPECT_EQ(run.exit_code, 2);
+        EXPECT_NE(run.err.find(c.expected), std::string::npos) << run.err;
+        EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+        EXPECT_FALSE(std::filesystem::exists(c.out));
+    }
 }
 
 }  // namespace
