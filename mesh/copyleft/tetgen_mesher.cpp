@@ -112,6 +112,31 @@ Status check_surface(const SurfaceMesh& surface) {
         }
         i = j;
     }
+    // A closed surface with nothing inside (every point in one plane, or parts whose volumes
+    // cancel): TetGen aborts on it (signal 6) instead of saying so. The volume by the divergence
+    // theorem, about the bounds' centre, against the bounds' cube: exactly flat gives rounding
+    // only (~1e-16); the threshold is far below any real solid's.
+    Vec3 lo = surface.points[surface.triangles[0][0]], hi = lo;
+    for (const auto& tri : surface.triangles) {
+        for (std::uint32_t v : tri) {
+            lo = glm::min(lo, surface.points[v]);
+            hi = glm::max(hi, surface.points[v]);
+        }
+    }
+    const Vec3 centre = 0.5 * (lo + hi);
+    double six_volume = 0;
+    for (const auto& tri : surface.triangles) {
+        const Vec3 a = surface.points[tri[0]] - centre;
+        six_volume += glm::dot(a, glm::cross(surface.points[tri[1]] - centre - a,
+                                             surface.points[tri[2]] - centre - a));
+    }
+    const double size = glm::length(hi - lo);
+    if (!(std::abs(six_volume) / 6.0 > 1e-12 * size * size * size)) {
+        return make_error(ErrorCode::kInvalidMesh,
+                          "the surface encloses no volume (it is flat, or its parts cancel): "
+                          "there is nothing inside for TetGen to mesh",
+                          where);
+    }
     return {};
 }
 

@@ -180,6 +180,24 @@ TEST(TetgenMesher, OpenSurfaceIsAnError) {
     expect_error(surface, {}, ErrorCode::kInvalidMesh, "not closed");
 }
 
+// Issue 27: a flat closed surface (a box of zero height, as a flat STL part is) made TetGen
+// abort ("TetGen crashed (signal 6)"), in an axis plane or not. Each is refused before TetGen
+// runs, saying why; a thin but real solid is still meshed.
+TEST(TetgenMesher, SurfaceEnclosingNoVolumeIsAnError) {
+    SurfaceMesh flat;
+    flat.name = "flat";
+    add_box(flat, Vec3(0.0), Vec3(1.0, 1.0, 0.0));
+    expect_error(flat, {}, ErrorCode::kInvalidMesh, "encloses no volume");
+    SurfaceMesh tilted = flat;  // the same in a plane no axis lies in
+    for (Vec3& p : tilted.points) p = Vec3(p.x + 0.3 * p.y, p.y, 0.7 * p.x - 0.2 * p.y);
+    expect_error(tilted, {}, ErrorCode::kInvalidMesh, "encloses no volume");
+    SurfaceMesh thin;
+    add_box(thin, Vec3(0.0), Vec3(1.0, 1.0, 0.05));
+    auto mesh = tetgen_mesh_surface(thin);
+    ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+    EXPECT_NEAR(checked_volume(*mesh), 0.05, 1e-12);
+}
+
 TEST(TetgenMesher, SelfIntersectingSurfaceIsAnError) {
     SurfaceMesh surface;
     add_box(surface, Vec3(0.0), Vec3(1.0));
