@@ -509,7 +509,7 @@ void bind_scene_rendering(py::class_<SceneHandle>& scene) {
             "render",
             [](SceneHandle& s, const std::string& method, const std::string& sort,
                const std::string& integrator, bool as_float, bool legend, bool bounding_box,
-               bool axes, const std::string& method_json) {
+               bool axes, const std::string& method_json, bool annotations_optional) {
                 tr::RenderOptions options;
                 options.sort = unwrap(tr::sort_method_named(sort));
                 unwrap(tr::set_integrator_option(options, integrator));
@@ -539,8 +539,14 @@ void bind_scene_rendering(py::class_<SceneHandle>& scene) {
                         annotations.legend = legend;
                         annotations.bounding_box = bounding_box;
                         annotations.axes = axes;
-                        TR_TRY_STATUS(
-                            tr::annotate(rendered.image, scene, *s.pipeline, annotations));
+                        const tr::Status drawn =
+                            tr::annotate(rendered.image, scene, *s.pipeline, annotations);
+                        // Optional (a quick look's legend, as the CLI's): a picture too small
+                        // for it is still a picture, with a note.
+                        if (!drawn.ok() && !annotations_optional) return drawn.error();
+                        if (!drawn.ok()) {
+                            rendered.notes.push_back("no annotations: " + drawn.error().message);
+                        }
                     }
                     return rendered;
                 }();
@@ -558,7 +564,7 @@ void bind_scene_rendering(py::class_<SceneHandle>& scene) {
             },
             py::arg("method"), py::arg("sort"), py::arg("integrator"), py::arg("as_float"),
             py::arg("legend") = false, py::arg("bounding_box") = false, py::arg("axes") = false,
-            py::arg("method_json") = "")
+            py::arg("method_json") = "", py::arg("annotations_optional") = false)
         .def(
             "sort",
             [](py::object self, std::size_t index, const std::string& method) {
@@ -707,7 +713,11 @@ void bind_images_and_scene_files(py::module_& m) {
             }
             tr::QuickSceneOptions options =
                 look == "classic" ? tr::classic_quick_look() : tr::QuickSceneOptions{};
-            options.scalar = scalar;
+            // None: the CLI's default, the first point array, else the first cell array.
+            options.scalar = scalar.empty() ? tr::default_quick_scalar(*mesh.mesh) : scalar;
+            if (options.scalar.empty()) {
+                bad_argument("the mesh has no point or cell array to show; hand one over");
+            }
             options.component = component;
             options.width = width;
             options.height = height;

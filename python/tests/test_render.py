@@ -81,6 +81,36 @@ def test_quick_scene_is_the_cli_quick_look(ring, cli, output_dir):
     assert np.abs(picture - read_pfm(out)).max() == 0.0
 
 
+def test_render_of_a_mesh_is_the_cli_quick_look(ring, cli, output_dir):
+    """render(path) and render(mesh) draw what `tetrender render MESH` draws (issue 27: it was
+    a JSON parse error): its defaults (the first point array, 800x600, the legend) and its
+    options as keywords."""
+    path = output_dir / "ring.vtu"
+    write_ring(ring, path)
+    out = output_dir / "quick_default.pfm"
+    result = run_cli(cli, "render", str(path), "-o", str(out))
+    assert result.returncode == 0, result.stderr
+    expected = read_pfm(out)
+    assert expected.shape == (600, 800, 3)
+    for mesh in (str(path), path, ring_mesh(ring)):
+        # Measured: largest difference 0, the legend included.
+        assert np.abs(tetrender.render(mesh, dtype=np.float32) - expected).max() == 0.0
+    # A picture too small for the legend is still drawn, with the CLI's note.
+    small = output_dir / "quick_small.pfm"
+    result = run_cli(cli, "render", str(path), "--scalar", "temperature", "--size", "64x48",
+                     "-o", str(small))
+    assert result.returncode == 0 and "too small" in result.stderr, result.stderr
+    picture, _, notes = tetrender.render(path, scalar="temperature", width=64, height=48,
+                                         dtype=np.float32, return_stats=True)
+    assert np.abs(picture - read_pfm(small)).max() == 0.0
+    assert any("too small" in note for note in notes), notes
+    # Misuse says what was expected.
+    with pytest.raises(tetrender.Error, match="quick-look keywords, for a mesh"):
+        tetrender.render(scene_dict(ring_mesh(ring)), width=64)
+    with pytest.raises(TypeError, match="widht"):
+        tetrender.render(path, widht=64)
+
+
 def test_quick_scene_options_are_the_clis(ring, cli, output_dir):
     write_ring(ring, output_dir / "ring.vtu")
     out = output_dir / "quick_options.pfm"

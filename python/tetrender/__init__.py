@@ -453,7 +453,7 @@ class Scene:
     def quick(
         cls,
         mesh: Any,
-        scalar: str,
+        scalar: str | None = None,
         component: int | None = None,
         width: int = 800,
         height: int = 600,
@@ -471,8 +471,9 @@ class Scene:
     ) -> "Scene":
         """The CLI's quick-look scene (``tetrender render mesh --scalar NAME``) of a mesh.
 
-        ``mesh`` is a Mesh, meshio or PyVista-shaped object, or a path. The keywords are the
-        CLI's options of the same names (docs/quick-look.md): by default the colour map and
+        ``mesh`` is a Mesh, meshio or PyVista-shaped object, or a path; ``scalar`` None is the
+        CLI's default: the mesh's first point array, else its first cell array. The keywords
+        are the CLI's options of the same names (docs/quick-look.md): by default the colour map and
         opacity span the 1st to 99th percentile, the unit distance brings a typical ray through
         the object to opacity 0.8 and the camera fits the object's projected extent from
         ``view`` turned by ``azimuth`` and ``elevation``; ``look="classic"`` is the scene before
@@ -483,7 +484,7 @@ class Scene:
         scene = cls.__new__(cls)
         scene._meshes = [tets]
         scene._handle = _core.quick_scene(
-            tets, name, scalar, -1 if component is None else int(component), int(width),
+            tets, name, scalar or "", -1 if component is None else int(component), int(width),
             int(height), view, colormap, look=look,
             range=None if range is None else (float(range[0]), float(range[1])),
             opacity=None if opacity is None else float(opacity),
@@ -546,6 +547,18 @@ def _scene(scene: Any) -> Scene:
     return scene if isinstance(scene, Scene) else Scene(scene)
 
 
+def _is_mesh(thing: Any) -> bool:
+    """Whether render() takes `thing` as a mesh for a quick look: a path that is not a scene
+    file's (.json), a Mesh, or a meshio- or PyVista-shaped object."""
+    if isinstance(thing, (Scene, Mapping)):
+        return False
+    if isinstance(thing, str) and thing.lstrip().startswith("{"):
+        return False
+    if isinstance(thing, (str, os.PathLike)):
+        return Path(os.fspath(thing)).suffix.lower() != ".json"
+    return isinstance(thing, Mesh) or hasattr(thing, "points")
+
+
 def render(
     scene: Any,
     method: str | Mapping[str, Any] | None = None,
@@ -553,11 +566,17 @@ def render(
     integrator: str = "preintegrated",
     dtype: Any = np.uint8,
     return_stats: bool = False,
-    legend: bool = False,
+    legend: bool | None = None,
     bounding_box: bool = False,
     axes: bool = False,
+    **quick: Any,
 ) -> Any:
     """Renders a scene (a Scene, or what Scene() takes) to an ``(H, W, 3)`` array, row 0 at the top.
+
+    A mesh instead (a path that is not a ``.json`` scene file, a Mesh, a meshio or PyVista-shaped
+    object) is drawn as ``tetrender render MESH`` draws it: the quick look (Scene.quick, whose
+    keywords ``quick`` takes: ``scalar``, ``width``, ``height``, ``range``, ...) with its legend,
+    left out with a note when the picture is too small for it, as the CLI does.
 
     ``method`` overrides the scene's: a name (projected-tetrahedra, pbvr-image, pbvr-object,
     splat, texture-advection, spot-noise...) keeps the scene's method keys, a mapping is a whole
@@ -569,20 +588,28 @@ def render(
     With ``return_stats`` returns ``(image, stats, notes)``. The GIL is released meanwhile.
     ``legend``, ``bounding_box``, ``axes``: the CLI's annotations (pipeline/annotations.h: a
     colour bar of each volume's array with its range and ticks, the meshes' box, an axes
-    triad), drawn on the picture; off by default, as for scene files. A picture too small for
-    its legend raises Error.
+    triad), drawn on the picture; the legend by default on for a mesh, off for a scene, as in
+    the CLI. A picture too small for a legend asked for raises Error.
     """
     as_float = np.dtype(dtype) == np.float32
     if not as_float and np.dtype(dtype) != np.uint8:
         raise Error(f"error: dtype must be uint8 or float32, not {np.dtype(dtype).name}")
+    legend_optional = False
+    if _is_mesh(scene):
+        scene = Scene.quick(scene, **quick)
+        if legend is None:
+            legend, legend_optional = quick.get("look", "fitted") != "classic", True
+    elif quick:
+        raise Error(f"error: {', '.join(sorted(quick))}: quick-look keywords, for a mesh; "
+                    f"a scene says these itself")
     name, method_json = "", ""
     if isinstance(method, Mapping):
         method_json = json.dumps(dict(method))
     elif method is not None:
         name = str(method)
-    image, stats, notes, _ = _scene(scene)._handle.render(name, sort, integrator, as_float,
-                                                          legend, bounding_box, axes,
-                                                          method_json=method_json)
+    image, stats, notes, _ = _scene(scene)._handle.render(
+        name, sort, integrator, as_float, bool(legend), bounding_box, axes,
+        method_json=method_json, annotations_optional=legend_optional)
     return (image, stats, notes) if return_stats else image
 
 
