@@ -104,19 +104,17 @@ Result<RenderResult> render_merged(Pipeline& pipeline, const Scene& scene,
     }
     TR_TRY(const std::unique_ptr<SceneVolumes> loaded,
            load_scene_volumes(pipeline, scene, result.stats));
-    auto start = Clock::now();
+    const auto start = Clock::now();
     VolumeScene& merged = loaded->scene;
     for (VolumeData& v : merged.volumes) {
         v.shader = &pipeline.shader(*v.tf, options.integrator, longest_edge(*v.mesh));
     }
     result.stats.set("shader_ms", ms_since(start));
     const CameraFrame frame(scene.camera, scene.width, scene.height);
-    TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
-    start = Clock::now();
-    const OpaqueLayer layer = opaque.empty() || stops
-                                  ? OpaqueLayer{}
-                                  : render_opaque(opaque.layers(), frame, scene.background);
-    result.stats.set("opaque_ms", ms_since(start));
+    OpaqueLayer layer;  // the scene's opaque surfaces, unless stops stand in for them
+    if (!stops) {
+        TR_TRY(layer, opaque_layer(pipeline, scene, frame, result.stats));
+    }
     static_cast<View&>(merged) = scene_view(scene, options, frame, stops ? *stops : layer);
     SegmentMergeStats merge;
     result.image =
@@ -212,16 +210,14 @@ Result<RenderResult> render_projected_volume(Pipeline& pipeline, const Scene& sc
     result.stats.set("convexify_ms", prepared.sorted->convexify_ms);
     TR_TRY(const std::vector<float> scalar, pipeline.scalar(volume, prepared.mesh()));
     result.stats.set("sort_ms", sort_stats.milliseconds);
-    auto start = Clock::now();
+    const auto start = Clock::now();
     const SegmentShader& shader = pipeline.shader(volume.transfer_function, options.integrator,
                                                   longest_edge(prepared.mesh()));
     result.stats.set("shader_ms", ms_since(start));
-    TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
-    start = Clock::now();
-    const OpaqueLayer layer = opaque.empty() || stops
-                                  ? OpaqueLayer{}
-                                  : render_opaque(opaque.layers(), frame, scene.background);
-    result.stats.set("opaque_ms", ms_since(start));
+    OpaqueLayer layer;  // the scene's opaque surfaces, unless stops stand in for them
+    if (!stops) {
+        TR_TRY(layer, opaque_layer(pipeline, scene, frame, result.stats));
+    }
 
     RenderInputs in;
     static_cast<View&>(in) = scene_view(scene, options, frame, stops ? *stops : layer);
