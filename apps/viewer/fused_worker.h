@@ -9,26 +9,24 @@
 //
 // A new request (camera, size, mode, any volume's scalar or transfer function) replaces the one
 // in progress after its current batch or exact picture; the window never waits: it shows the
-// latest picture.
+// latest picture. The pictures are the pipeline's progressive render's
+// (pipeline/progressive_render.h); the worker decides when to draw which, and at what size.
 
 #include <apps/viewer/request_worker.h>
 #include <apps/viewer/view_method.h>
 #include <core/camera.h>
 #include <core/image.h>
 #include <mesh/tet_mesh.h>
+#include <pipeline/progressive_render.h>
 #include <project/opaque_geometry.h>
 #include <project/transfer_function.h>
 
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <mutex>
-#include <optional>
 #include <string>
 #include <string_view>
-#include <thread>
 #include <vector>
 
 namespace tr::viewer {
@@ -66,24 +64,19 @@ struct FusedRequest {
     Vec3 background{0.0};
 };
 
-// The picture so far of one request.
-struct FusedFrame {
-    std::shared_ptr<const Image> image;  // the exact picture once drawn, else the pbvr-image mean
+// The picture so far of one request (its counts and costs: ProgressiveStats; `exact`: `image` is
+// the exact fused picture, else the pbvr-image mean).
+struct FusedFrame : ProgressiveStats {
+    std::shared_ptr<const Image> image;
     std::uint64_t request_id = 0;
     FusedMode mode = FusedMode::kProgressive;
-    int repetitions = 0;  // pbvr-image repetitions accumulated
-    int batches = 0;
-    int preview_scale = 1;  // progressive: the quick picture was drawn at 1 / this of the size
-    bool exact = false;     // `image` is the exact fused picture
-    double batch_ms = 0, mean_batch_ms = 0;
-    double exact_ms = 0;  // the exact picture: shaders made and segments merged
-    double setup_ms = 0;  // the opaque layer
-    std::size_t particles = 0, fragments = 0, overlap_intervals = 0;
     bool finished = false;  // nothing more to draw for this request until a new one
     std::string error;      // a batch failed (out of memory): nothing more for this request
 };
 
-class FusedWorker : private RequestWorker<FusedRequest> {
+// set_target (pbvr-image's target repetitions), target, latest and wait_for (kWaitFinished: the
+// request's last picture): AccumulatingWorker (request_worker.h).
+class FusedWorker : public AccumulatingWorker<FusedRequest, FusedFrame> {
   public:
     // Progressive mode: how long the view must stay after the quick picture before the exact
     // one (which cannot be interrupted) is begun.
@@ -104,18 +97,6 @@ class FusedWorker : private RequestWorker<FusedRequest> {
     // Asks for `request`'s view (request.volumes: one per mesh); returns its id (increasing).
     std::uint64_t request(FusedRequest request);
 
-    // pbvr-image's target repetitions (clamped to [1, kMaxRepetitions]); no restart.
-    void set_target(int repetitions);
-    int target() const;
-
-    std::optional<FusedFrame> latest() const;
-
-    // Blocks until the frame of `request_id` has at least `repetitions` repetitions or the exact
-    // picture (or is finished or failed), or a later request has a frame; returns that frame.
-    // kWaitFinished waits for the request's last picture.
-    static constexpr int kWaitFinished = kMaxRepetitions + 1;
-    FusedFrame wait_for(std::uint64_t request_id, int repetitions);
-
     // Called from the worker thread after each picture is published. Set before the first
     // request.
     void set_on_frame(std::function<void()> on_frame) { on_frame_ = std::move(on_frame); }
@@ -125,23 +106,18 @@ class FusedWorker : private RequestWorker<FusedRequest> {
 
   private:
     struct Job;
-    struct ShaderCache;
+    bool finished_at(const FusedFrame& frame, int target) const override;
     void run();
     void begin(Job& job);
-    bool has_work(const Job& job, int target) const;
     void step(Job& job, int target);  // one batch, or the exact picture
     void publish(Job& job);
 
     const std::vector<FusedMesh> meshes_;
-    const std::vector<OpaqueSurface> opaque_;
     const PbvrSettings settings_;
     std::function<void()> on_frame_;
 
-    std::optional<FusedFrame> latest_;
-    int target_;
-
-    // Worker thread only: per volume; the last quick picture's time per full-size pixel.
-    std::vector<std::unique_ptr<ShaderCache>> shaders_;
+    // Worker thread only: the pictures, and the last quick picture's time per full-size pixel.
+    ProgressiveRender render_;
     double preview_ms_per_pixel_ = 0;
 };
 

@@ -1,37 +1,33 @@
 #pragma once
-// The viewer's particle-based modes in a worker thread: the library's PBVR
-// (project/pbvr/pbvr_image.h, project/pbvr/pbvr_object.h) renders the requested view a batch of
-// repetitions at a time on the CPU, each batch with its own seed, and the batches are accumulated
-// in floating point while the view stays; a new request (camera, size, scalar, transfer function or
-// method changed) restarts the accumulation after the batch in progress. The window never waits for
-// it: it shows the latest accumulated picture.
+// The viewer's particle-based modes in a worker thread: the pipeline's progressive render
+// (pipeline/progressive_render.h: pbvr-image or pbvr-object as `tetrender render` draws them)
+// renders the requested view a batch of repetitions at a time on the CPU, each batch with its own
+// seed, and the batches are accumulated in floating point while the view stays; a new request
+// (camera, size, scalar, transfer function or method changed) restarts the accumulation after the
+// batch in progress. The window never waits for it: it shows the latest accumulated picture.
 //
 // Splatting (ViewMethod::kSplat) runs here too: one request is one picture
 // (pipeline/methods/splat_method.h render_splat_picture, as `tetrender render --method splat` draws
 // it), finished at once; with vector splats the request names the frame of the texture cycle.
 //
-// O-PBVR keeps the particles of a view's first batches (ObjectParticleSet, up to
-// PbvrSettings::max_kept_bytes): when a new request differs only in its transfer function, or
-// turns an orthographic camera (ObjectParticleSet::reusable_for), the kept particles are drawn
-// again (after retarget() for a new function) instead of being generated anew; a perspective
-// camera that moves, a new scalar or a new size generates them again.
+// O-PBVR keeps the particles of a view's first batches (up to PbvrSettings::max_kept_bytes): when
+// a new request differs only in its transfer function, or turns an orthographic camera, the kept
+// particles are drawn again (after retarget() for a new function) instead of being generated
+// anew; a perspective camera that moves, a new scalar or a new size generates them again.
 
 #include <apps/viewer/request_worker.h>
 #include <apps/viewer/view_method.h>
 #include <core/camera.h>
 #include <core/image.h>
 #include <mesh/tet_mesh.h>
+#include <pipeline/progressive_render.h>
 #include <project/opaque_geometry.h>
 #include <project/transfer_function.h>
 
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <mutex>
-#include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace tr::viewer {
@@ -49,30 +45,17 @@ struct PbvrRequest {
     std::int64_t splat_frame = 0;  // splat with vectors: the frame of the texture cycle
 };
 
-// The accumulation so far of one request.
-struct PbvrFrame {
+// The accumulation so far of one request (its counts and costs: ProgressiveStats).
+struct PbvrFrame : ProgressiveStats {
     std::shared_ptr<const Image> image;  // the mean of the repetitions so far
     std::uint64_t request_id = 0;        // the request it answers
     ViewMethod method = ViewMethod::kPbvrImage;
-    int repetitions = 0;        // accumulated
-    int batches = 0;            // rendered for this request
-    double batch_ms = 0;        // the last batch: rendering and accumulating
-    double mean_batch_ms = 0;   // over this request's batches
-    double setup_ms = 0;        // before the first batch: opaque layer, shader, retargets
-    std::size_t particles = 0;  // drawn (pbvr-image) or kept and generated (pbvr-object)
-    // pbvr-object: repetitions re-rendered from kept particles (not generated for this
-    // request), the cells retarget() regenerated in a kept particle set (the largest count
-    // over the sets), the cells, and the bytes of particles kept.
-    int reused_repetitions = 0;
-    std::size_t retargeted_cells = 0;
-    std::size_t cells = 0;
-    std::size_t kept_bytes = 0;
-    int kept_sets = 0;
     bool finished = false;  // reached the target: the worker rests until the next request
     std::string error;      // the batch failed (out of memory): nothing more for this request
 };
 
-class PbvrWorker : private RequestWorker<PbvrRequest> {
+// set_target, target, latest and wait_for: AccumulatingWorker (request_worker.h).
+class PbvrWorker : public AccumulatingWorker<PbvrRequest, PbvrFrame> {
   public:
     // `mesh` (its real tets are drawn) and the surfaces `opaque` points to must outlive the
     // worker. `longest_edge`: the mesh's (cpu_renderer.h), for pbvr-image's shader.
@@ -86,18 +69,6 @@ class PbvrWorker : private RequestWorker<PbvrRequest> {
     // progress stops after its current batch. Returns the request's id (increasing).
     std::uint64_t request(PbvrRequest request);
 
-    // Where accumulation stops (clamped to [1, kMaxRepetitions]); raising it resumes a finished
-    // accumulation, lowering it finishes it after the current batch. No restart.
-    void set_target(int repetitions);
-    int target() const;
-
-    // The latest accumulated picture, if any (of the latest request or an older one).
-    std::optional<PbvrFrame> latest() const;
-
-    // Blocks until the frame of `request_id` has at least `repetitions` (or the accumulation
-    // finished or failed), or a later request has a frame; returns that frame.
-    PbvrFrame wait_for(std::uint64_t request_id, int repetitions);
-
     // Called from the worker thread after each batch is published (e.g. glfwPostEmptyEvent, to
     // wake the window loop). Set before the first request.
     void set_on_frame(std::function<void()> on_frame) { on_frame_ = std::move(on_frame); }
@@ -106,26 +77,18 @@ class PbvrWorker : private RequestWorker<PbvrRequest> {
 
   private:
     struct Job;
+    bool finished_at(const PbvrFrame& frame, int target) const override;
     void run();
     void begin(Job& job);
     void run_batch(Job& job, int target);  // one batch towards `target` repetitions
+    void draw_splat(Job& job, int target);
     void publish(Job& job);
 
     const TetMesh& mesh_;
-    const std::vector<OpaqueSurface> opaque_;
     const double longest_edge_;
     const PbvrSettings settings_;
     std::function<void()> on_frame_;
-
-    std::optional<PbvrFrame> latest_;
-    int target_;
-
-    // Worker thread only: O-PBVR's kept particles and pbvr-image's shader.
-    struct KeptBatch;
-    std::vector<KeptBatch> kept_;
-    std::uint64_t kept_scalar_version_ = 0;
-    struct ShaderCache;
-    std::unique_ptr<ShaderCache> shader_;
+    ProgressiveRender render_;  // worker thread only
 };
 
 }  // namespace tr::viewer

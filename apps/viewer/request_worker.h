@@ -6,7 +6,14 @@
 //
 // A worker derives from it, starts `thread_` at the end of its constructor (when the rest of it
 // is ready) and calls stop_and_join() first in its destructor (before its members go).
+//
+// AccumulatingWorker adds what the particle and fused workers (pbvr_worker.h, fused_worker.h)
+// share: a target of repetitions where accumulation stops, and the latest picture, which callers
+// read or wait for.
 
+#include <apps/viewer/view_method.h>
+
+#include <algorithm>
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
@@ -50,6 +57,75 @@ class RequestWorker {
     std::uint64_t next_id_ = 0;
     bool stop_ = false;
     std::thread thread_;
+};
+
+// Frame: the picture so far of one request, with `request_id`, `repetitions`, `finished` (nothing
+// more to draw until a new request or target) and `error`; and, when it has one, `exact` (a
+// picture no more repetitions improve).
+template <class Request, class Frame>
+class AccumulatingWorker : protected RequestWorker<Request> {
+  public:
+    // wait_for's `repetitions` that waits for the request's last picture.
+    static constexpr int kWaitFinished = kMaxRepetitions + 1;
+
+    // Where accumulation stops (clamped to [1, kMaxRepetitions]); raising it resumes a finished
+    // accumulation, lowering it finishes it after the current batch. No restart.
+    void set_target(int repetitions) {
+        {
+            std::lock_guard lock(this->mutex_);
+            target_ = std::clamp(repetitions, 1, kMaxRepetitions);
+            if (latest_) latest_->finished = finished_at(*latest_, target_);
+        }
+        this->wake_.notify_all();
+        this->done_.notify_all();
+    }
+
+    int target() const {
+        std::lock_guard lock(this->mutex_);
+        return target_;
+    }
+
+    // The latest picture, if any (of the latest request or an older one).
+    std::optional<Frame> latest() const {
+        std::lock_guard lock(this->mutex_);
+        return latest_;
+    }
+
+    // Blocks until the frame of `request_id` has at least `repetitions` (or is exact, finished or
+    // failed), or a later request has a frame; returns that frame.
+    Frame wait_for(std::uint64_t request_id, int repetitions) {
+        std::unique_lock lock(this->mutex_);
+        this->done_.wait(lock, [&] {
+            if (!latest_) return false;
+            const Frame& f = *latest_;
+            if (f.request_id != request_id) return f.request_id > request_id;
+            if (f.finished || !f.error.empty()) return true;
+            bool exact = false;
+            if constexpr (requires { f.exact; }) exact = f.exact;
+            return repetitions < kWaitFinished && (exact || f.repetitions >= repetitions);
+        });
+        return *latest_;
+    }
+
+  protected:
+    explicit AccumulatingWorker(int target) : target_(std::clamp(target, 1, kMaxRepetitions)) {}
+    ~AccumulatingWorker() = default;
+
+    // Whether `frame` has nothing more to draw at `target` repetitions.
+    virtual bool finished_at(const Frame& frame, int target) const = 0;
+
+    // Publishes `frame` (its `finished` set here) and wakes those waiting.
+    void publish_frame(Frame frame) {
+        {
+            std::lock_guard lock(this->mutex_);
+            frame.finished = finished_at(frame, target_);
+            latest_ = std::move(frame);
+        }
+        this->done_.notify_all();
+    }
+
+    std::optional<Frame> latest_;  // under mutex_
+    int target_;                   // under mutex_
 };
 
 }  // namespace tr::viewer
