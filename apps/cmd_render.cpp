@@ -85,6 +85,7 @@ Result<Scene> quick_scene(Pipeline& pipeline, const RenderArgs& args,
     TR_TRY(options.time_step, first_time_step(args.time_step));
     TR_TRY_STATUS(check_picture_memory(options.width, options.height));  // before the loading
     QuickFileOptions file = quick_file_options(args.quick);
+    file.every_time_step = args.time_step == "all";
     // More volumes in the same space: MESH:ARRAY each (the array after the last colon).
     for (const std::string& spec : args.volumes) {
         const auto colon = spec.rfind(':');

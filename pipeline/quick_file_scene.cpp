@@ -2,8 +2,41 @@
 
 #include <algorithm>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace tr {
+namespace {
+
+// The steps of `volume`'s series other than its own (none when the file is not a series), as
+// the quick look takes them: without the point array `drop` when it is named.
+struct SeriesSteps {
+    std::vector<std::shared_ptr<const LoadedMesh>> loaded;
+    std::vector<std::shared_ptr<const TetMesh>> copies;  // without `drop`
+    std::vector<const TetMesh*> meshes;
+};
+
+Result<SeriesSteps> other_steps(Pipeline& pipeline, SceneVolume volume, const LoadedMesh& loaded,
+                                const std::string& drop = {}) {
+    SeriesSteps steps;
+    const int count = static_cast<int>(loaded.input.time_values.size());
+    const int own = volume.time_step;
+    for (int step = 0; step < count; ++step) {
+        if (step == own) continue;
+        volume.time_step = step;
+        TR_TRY(std::shared_ptr<const LoadedMesh> mesh, pipeline.mesh(volume));
+        if (!drop.empty()) {
+            steps.copies.push_back(without_point_field(mesh->tets, drop));
+            steps.meshes.push_back(steps.copies.back().get());
+        } else {
+            steps.meshes.push_back(&mesh->tets);
+        }
+        steps.loaded.push_back(std::move(mesh));
+    }
+    return steps;
+}
+
+}  // namespace
 
 Result<Scene> quick_scene_of_file(Pipeline& pipeline, const std::filesystem::path& path,
                                   QuickSceneOptions options, const QuickFileOptions& file,
@@ -51,6 +84,20 @@ Result<Scene> quick_scene_of_file(Pipeline& pipeline, const std::filesystem::pat
                        "' is both point and cell data: showing the point data (--cell-data for "
                        "the other)");
     }
+    // Every step drawn with one scene: its range covers them all.
+    std::vector<SeriesSteps> series;
+    if (file.every_time_step) {
+        TR_TRY(SeriesSteps steps,
+               other_steps(pipeline, volume, *loaded,
+                           file.cell_data && as_point ? options.scalar : std::string()));
+        options.series = steps.meshes;
+        if (!steps.meshes.empty()) {
+            said.push_back("--time-step all: the range covers all " +
+                           std::to_string(steps.meshes.size() + 1) + " time steps of '" +
+                           options.scalar + "'");
+        }
+        series.push_back(std::move(steps));
+    }
     // More volumes in the same space, each loaded at the same time step.
     std::vector<std::shared_ptr<const LoadedMesh>> others;
     std::vector<QuickVolume> more;
@@ -59,7 +106,12 @@ Result<Scene> quick_scene_of_file(Pipeline& pipeline, const std::filesystem::pat
         other.mesh = std::filesystem::absolute(other_path);
         other.time_step = options.time_step;
         TR_TRY(std::shared_ptr<const LoadedMesh> other_mesh, pipeline.mesh(other));
-        more.push_back({other.mesh, &other_mesh->tets, array, -1, ""});
+        more.push_back({other.mesh, &other_mesh->tets, array, -1, "", {}});
+        if (file.every_time_step) {
+            TR_TRY(SeriesSteps steps, other_steps(pipeline, other, *other_mesh));
+            more.back().series = steps.meshes;
+            series.push_back(std::move(steps));
+        }
         others.push_back(std::move(other_mesh));
     }
     // Of a field of ones, the note that it is constant says nothing new.

@@ -69,8 +69,29 @@ Result<std::vector<OpacityPoint>> quick_opacity(const QuickSceneOptions& options
     return points;
 }
 
+// The values the range, opacity and unit distance come from: the mesh's, or with a series those
+// of every step, each strided to at most kSeriesValuesPerStep.
+Result<std::vector<float>> quick_values(const TetMesh& mesh,
+                                        const std::vector<const TetMesh*>& series,
+                                        const std::string& scalar, int component) {
+    TR_TRY(std::vector<float> values, point_scalar(mesh, scalar, component));
+    if (series.empty()) return values;
+    const auto strided = [](const std::vector<float>& step, std::vector<float>& into) {
+        const std::size_t stride = (step.size() + kSeriesValuesPerStep - 1) / kSeriesValuesPerStep;
+        for (std::size_t i = 0; i < step.size(); i += std::max<std::size_t>(stride, 1))
+            into.push_back(step[i]);
+    };
+    std::vector<float> all;
+    strided(values, all);
+    for (const TetMesh* step : series) {
+        TR_TRY(const std::vector<float> more, point_scalar(*step, scalar, component));
+        strided(more, all);
+    }
+    return all;
+}
+
 // One volume: its array's range under a colour map, the opacity of the options, the unit
-// distance given or chosen from the mesh.
+// distance given or chosen from the mesh (and the other steps of its series, when given).
 Result<SceneVolume> quick_volume(const std::filesystem::path& mesh_path, const TetMesh& mesh,
                                  const std::string& scalar, int component,
                                  const std::string& colormap, const QuickSceneOptions& options,
@@ -81,7 +102,7 @@ Result<SceneVolume> quick_volume(const std::filesystem::path& mesh_path, const T
     volume.component = component;
     volume.time_step = options.time_step;
     volume.log_scale = options.log_scale;
-    TR_TRY(const std::vector<float> values, point_scalar(mesh, scalar, component));
+    TR_TRY(const std::vector<float> values, quick_values(mesh, options.series, scalar, component));
     // With a log scale, the range is found in log10 of the positive values.
     std::vector<float> logs;
     if (options.log_scale) {
@@ -137,7 +158,12 @@ Result<SceneVolume> quick_volume(const std::filesystem::path& mesh_path, const T
     }
     if (!(range[1] > range[0]) && notes) {
         const double value = options.log_scale ? std::pow(10.0, range[0]) : range[0];
-        notes->push_back("array '" + scalar + "' is constant (" + std::to_string(value) +
+        const std::string over =
+            options.series.empty()
+                ? std::string()
+                : " over all " + std::to_string(options.series.size() + 1) + " time steps";
+        notes->push_back("array '" + scalar + "' is constant" + over + " (" +
+                         std::to_string(value) +
                          "): the picture shows where the mesh is, in one colour");
     }
     // A constant sits in the middle of the colour map and of the opacity ramp.
@@ -258,6 +284,7 @@ Result<Scene> make_quick_scene(const std::filesystem::path& mesh_path, const Tet
         QuickSceneOptions own = options;
         own.range.reset();  // each volume over its own range, in its own colours
         own.colormap_preset.reset();
+        own.series = v.series;
         auto volume =
             quick_volume(v.mesh_path, *v.mesh, v.scalar, v.component, colormap, own, notes);
         if (!volume.ok()) {

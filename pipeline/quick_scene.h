@@ -60,6 +60,11 @@ struct QuickSceneOptions {
     double unit_distance = 0;
     double unit_distance_of_diagonal = 0;
     double ray_opacity = 0.8;
+    // A time series drawn with one transfer function (`--time-step all`): the meshes of its other
+    // steps. The range, the log scale's positives, the opacity and the unit distance then come
+    // from the values of every step (each step's strided to at most kSeriesValuesPerStep when
+    // there are more), and an array is said to be constant only when it is over the series.
+    std::vector<const TetMesh*> series;
     // The camera: `camera` when given (used as is), else one looking from `view` turned by
     // azimuth and elevation (degrees), fitting the object's projected extent (`fit_extent`;
     // false: the bounds' sphere, as before 2026-11), narrowed by `zoom`.
@@ -101,7 +106,11 @@ struct QuickVolume {
     std::string scalar;
     int component = -1;
     std::string colormap;  // empty: the next of viridis, inferno, coolwarm, gray not yet used
+    std::vector<const TetMesh*> series;  // as QuickSceneOptions::series, for this volume
 };
+
+// A time series' values per step, at most (QuickSceneOptions::series).
+inline constexpr std::size_t kSeriesValuesPerStep = std::size_t{1} << 20;
 
 // A scene of several volumes in one space (written with `volumes`): the first as above (its
 // scalar, component and colour map from `options`), each of `more` with its own array and

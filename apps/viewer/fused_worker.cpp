@@ -157,13 +157,8 @@ void FusedWorker::step(Job& job, int target) {
 void FusedWorker::publish(Job& job) {
     job.published = std::chrono::steady_clock::now();
     FusedFrame frame;
-    static_cast<ProgressiveStats&>(frame) = render_.stats();
-    frame.image = render_.picture();
-    frame.request_id = job.id;
     frame.mode = job.request.mode;
-    frame.error = job.error;
-    publish_frame(std::move(frame));
-    if (on_frame_) on_frame_();
+    publish_frame(render_, job.id, job.error, std::move(frame));
 }
 
 }  // namespace tr::viewer

@@ -74,8 +74,8 @@ struct FusedFrame : ProgressiveStats {
     std::string error;      // a batch failed (out of memory): nothing more for this request
 };
 
-// set_target (pbvr-image's target repetitions), target, latest and wait_for (kWaitFinished: the
-// request's last picture): AccumulatingWorker (request_worker.h).
+// set_target (pbvr-image's target repetitions), target, latest, wait_for (kWaitFinished: the
+// request's last picture) and set_on_frame: AccumulatingWorker (request_worker.h).
 class FusedWorker : public AccumulatingWorker<FusedRequest, FusedFrame> {
   public:
     // Progressive mode: how long the view must stay after the quick picture before the exact
@@ -97,10 +97,6 @@ class FusedWorker : public AccumulatingWorker<FusedRequest, FusedFrame> {
     // Asks for `request`'s view (request.volumes: one per mesh); returns its id (increasing).
     std::uint64_t request(FusedRequest request);
 
-    // Called from the worker thread after each picture is published. Set before the first
-    // request.
-    void set_on_frame(std::function<void()> on_frame) { on_frame_ = std::move(on_frame); }
-
     const PbvrSettings& settings() const { return settings_; }
     std::size_t num_volumes() const { return meshes_.size(); }
 
@@ -114,7 +110,6 @@ class FusedWorker : public AccumulatingWorker<FusedRequest, FusedFrame> {
 
     const std::vector<FusedMesh> meshes_;
     const PbvrSettings settings_;
-    std::function<void()> on_frame_;
 
     // Worker thread only: the pictures, and the last quick picture's time per full-size pixel.
     ProgressiveRender render_;

@@ -116,13 +116,8 @@ void PbvrWorker::draw_splat(Job& job, int target) {
 
 void PbvrWorker::publish(Job& job) {
     PbvrFrame frame;
-    static_cast<ProgressiveStats&>(frame) = render_.stats();
-    frame.image = render_.picture();
-    frame.request_id = job.id;
     frame.method = job.request.method;
-    frame.error = job.error;
-    publish_frame(std::move(frame));
-    if (on_frame_) on_frame_();
+    publish_frame(render_, job.id, job.error, std::move(frame));
 }
 
 }  // namespace tr::viewer

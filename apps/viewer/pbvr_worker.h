@@ -54,7 +54,7 @@ struct PbvrFrame : ProgressiveStats {
     std::string error;      // the batch failed (out of memory): nothing more for this request
 };
 
-// set_target, target, latest and wait_for: AccumulatingWorker (request_worker.h).
+// set_target, target, latest, wait_for and set_on_frame: AccumulatingWorker (request_worker.h).
 class PbvrWorker : public AccumulatingWorker<PbvrRequest, PbvrFrame> {
   public:
     // `mesh` (its real tets are drawn) and the surfaces `opaque` points to must outlive the
@@ -68,10 +68,6 @@ class PbvrWorker : public AccumulatingWorker<PbvrRequest, PbvrFrame> {
     // Asks for `request`'s view: it replaces a request not yet started, and the accumulation in
     // progress stops after its current batch. Returns the request's id (increasing).
     std::uint64_t request(PbvrRequest request);
-
-    // Called from the worker thread after each batch is published (e.g. glfwPostEmptyEvent, to
-    // wake the window loop). Set before the first request.
-    void set_on_frame(std::function<void()> on_frame) { on_frame_ = std::move(on_frame); }
 
     const PbvrSettings& settings() const { return settings_; }
 
@@ -87,7 +83,6 @@ class PbvrWorker : public AccumulatingWorker<PbvrRequest, PbvrFrame> {
     const TetMesh& mesh_;
     const double longest_edge_;
     const PbvrSettings settings_;
-    std::function<void()> on_frame_;
     ProgressiveRender render_;  // worker thread only
 };
 

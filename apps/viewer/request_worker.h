@@ -12,10 +12,12 @@
 // read or wait for.
 
 #include <apps/viewer/view_method.h>
+#include <pipeline/progressive_render.h>
 
 #include <algorithm>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -59,9 +61,8 @@ class RequestWorker {
     std::thread thread_;
 };
 
-// Frame: the picture so far of one request, with `request_id`, `repetitions`, `finished` (nothing
-// more to draw until a new request or target) and `error`; and, when it has one, `exact` (a
-// picture no more repetitions improve).
+// Frame: the picture so far of one request, a ProgressiveStats with `image`, `request_id`,
+// `finished` (nothing more to draw until a new request or target) and `error`.
 template <class Request, class Frame>
 class AccumulatingWorker : protected RequestWorker<Request> {
   public:
@@ -100,12 +101,14 @@ class AccumulatingWorker : protected RequestWorker<Request> {
             const Frame& f = *latest_;
             if (f.request_id != request_id) return f.request_id > request_id;
             if (f.finished || !f.error.empty()) return true;
-            bool exact = false;
-            if constexpr (requires { f.exact; }) exact = f.exact;
-            return repetitions < kWaitFinished && (exact || f.repetitions >= repetitions);
+            return repetitions < kWaitFinished && (f.exact || f.repetitions >= repetitions);
         });
         return *latest_;
     }
+
+    // Called from the worker thread after each picture is published (e.g. glfwPostEmptyEvent, to
+    // wake the window loop). Set before the first request.
+    void set_on_frame(std::function<void()> on_frame) { on_frame_ = std::move(on_frame); }
 
   protected:
     explicit AccumulatingWorker(int target) : target_(std::clamp(target, 1, kMaxRepetitions)) {}
@@ -114,16 +117,24 @@ class AccumulatingWorker : protected RequestWorker<Request> {
     // Whether `frame` has nothing more to draw at `target` repetitions.
     virtual bool finished_at(const Frame& frame, int target) const = 0;
 
-    // Publishes `frame` (its `finished` set here) and wakes those waiting.
-    void publish_frame(Frame frame) {
+    // Publishes `render`'s picture and stats so far as request `id`'s `frame` (its own fields set
+    // by the caller), with `error` (empty: none); wakes those waiting.
+    void publish_frame(const ProgressiveRender& render, std::uint64_t id, std::string error,
+                       Frame frame) {
+        static_cast<ProgressiveStats&>(frame) = render.stats();
+        frame.image = render.picture();
+        frame.request_id = id;
+        frame.error = std::move(error);
         {
             std::lock_guard lock(this->mutex_);
             frame.finished = finished_at(frame, target_);
             latest_ = std::move(frame);
         }
         this->done_.notify_all();
+        if (on_frame_) on_frame_();
     }
 
+    std::function<void()> on_frame_;
     std::optional<Frame> latest_;  // under mutex_
     int target_;                   // under mutex_
 };

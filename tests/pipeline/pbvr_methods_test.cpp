@@ -2,7 +2,6 @@
 // loaded, absurd work refused, a transparent transfer function drawing nothing, opaque geometry
 // hiding what lies behind it, and both methods converging on the same picture as projected
 // tetrahedra.
-#include <mesh/tetrahedralize.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/quick_scene.h>
 #include <project/colormap.h>
@@ -16,23 +15,11 @@
 namespace tr {
 namespace {
 
-std::shared_ptr<const TetMesh> wavy_grid() {
-    testing::MixedGridOptions o;
-    o.nx = o.ny = o.nz = 3;
-    auto mesh = tetrahedralize(testing::make_mixed_grid(o)).value();
-    std::vector<double> wave;
-    for (const Vec3& p : mesh.points()) {
-        wave.push_back(0.5 + 0.45 * std::sin(1.3 * p.x) * std::cos(0.9 * p.y + 0.4 * p.z));
-    }
-    EXPECT_TRUE(mesh.add_point_field(make_double_field("wave", 1, wave)).ok());
-    return std::make_shared<const TetMesh>(std::move(mesh));
-}
-
 Scene scene_with(const std::string& method, int repetitions, int size = 64) {
     Scene scene;
     SceneVolume v;
     v.mesh = "grid";
-    v.tets = wavy_grid();
+    v.tets = testing::wavy_grid();
     v.scalar = "wave";
     v.transfer_function = make_quick_transfer_function("viridis", 0.05, 0.95, 0.6, 1.5).value();
     scene.camera = framing_camera(v.tets->bounds(), kDefaultViewDirection);

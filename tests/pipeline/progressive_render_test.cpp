@@ -2,7 +2,6 @@
 // draws: one batch of a particle method is the pipeline's picture with the same repetitions and
 // seed; batches accumulate as their repetition-weighted mean; the exact picture of two volumes is
 // the pipeline's segment merge; pbvr-object's kept particles are drawn again for the same view.
-#include <mesh/tetrahedralize.h>
 #include <pipeline/pipeline.h>
 #include <pipeline/progressive_render.h>
 #include <pipeline/quick_scene.h>
@@ -19,26 +18,13 @@
 namespace tr {
 namespace {
 
-std::shared_ptr<const TetMesh> wavy_grid(double shift) {
-    testing::MixedGridOptions o;
-    o.nx = o.ny = o.nz = 3;
-    o.offset = Vec3(shift, 0.5 * shift, 0);
-    auto mesh = tetrahedralize(testing::make_mixed_grid(o)).value();
-    std::vector<double> wave;
-    for (const Vec3& p : mesh.points()) {
-        wave.push_back(0.5 + 0.45 * std::sin(1.3 * p.x) * std::cos(0.9 * p.y + 0.4 * p.z));
-    }
-    EXPECT_TRUE(mesh.add_point_field(make_double_field("wave", 1, wave)).ok());
-    return std::make_shared<const TetMesh>(std::move(mesh));
-}
-
 // One volume, or two that overlap in space.
 Scene scene_of(const std::string& method, int repetitions, std::uint64_t seed, int volumes = 1) {
     Scene scene;
     for (int v = 0; v < volumes; ++v) {
         SceneVolume volume;
         volume.mesh = "grid" + std::to_string(v);
-        volume.tets = wavy_grid(0.6 * v);
+        volume.tets = testing::wavy_grid(Vec3(0.6 * v, 0.3 * v, 0));
         volume.scalar = "wave";
         volume.transfer_function =
             make_quick_transfer_function(v == 0 ? "viridis" : "inferno", 0.05, 0.95, 0.6, 1.5)

@@ -235,5 +235,39 @@ TEST(AnimationFrames, AnOrbitsCamerasOrASplatCyclesFramesInOrder) {
     EXPECT_EQ(seen, (std::vector<int>{0, 1, 2}));
 }
 
+// A series whose field is zero at its first step: the range comes from every step, and the
+// field is called constant only when it is over the whole series.
+TEST(QuickSceneSeries, RangeCoversEveryStepAndConstantMeansOverTheSeries) {
+    TetMesh zero = box_mesh({1.0, 1.0, 1.0}, 3), ramp = zero;
+    std::vector<float> zeros(zero.num_points(), 0.0f), x;
+    for (const Vec3& p : ramp.points()) x.push_back(static_cast<float>(2.0 * p.x));
+    ASSERT_TRUE(zero.add_point_field(make_float_field("c", 1, zeros)).ok());
+    ASSERT_TRUE(ramp.add_point_field(make_float_field("c", 1, x)).ok());
+    QuickSceneOptions options;
+    options.scalar = "c";
+    options.range_percent = 0.0;  // the whole range: its ends are known
+    const auto range_of = [](const Scene& scene) {
+        const auto& points = scene.volumes[0].transfer_function.color_points();
+        return std::array<double, 2>{points.front().s, points.back().s};
+    };
+    std::vector<std::string> notes;
+    // Step 0 alone: a constant, drawn over a made-up range around it.
+    const Scene alone = make_quick_scene("zero.vtu", zero, options, {}, &notes).value();
+    EXPECT_EQ(range_of(alone), (std::array<double, 2>{-0.5, 0.5}));
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("is constant (0"), std::string::npos) << notes[0];
+    // With the next step: the series' range, no note.
+    notes.clear();
+    options.series = {&ramp};
+    const Scene series = make_quick_scene("zero.vtu", zero, options, {}, &notes).value();
+    EXPECT_EQ(range_of(series), (std::array<double, 2>{0.0, 2.0}));
+    EXPECT_TRUE(notes.empty()) << notes[0];
+    // Zero at every step: constant over the series, said so.
+    options.series = {&zero, &zero};
+    (void)make_quick_scene("zero.vtu", zero, options, {}, &notes).value();
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("is constant over all 3 time steps"), std::string::npos) << notes[0];
+}
+
 }  // namespace
 }  // namespace tr

@@ -1,4 +1,5 @@
 #include <mesh/cell_type.h>
+#include <mesh/tetrahedralize.h>
 #include <tests/support/mixed_grid.h>
 
 #include <algorithm>
@@ -300,6 +301,19 @@ UnstructuredMesh shuffle_mesh(const UnstructuredMesh& mesh, std::uint32_t seed) 
     std::mt19937 rng(seed);
     std::shuffle(cells.begin(), cells.end(), rng);
     return extract_cells(mesh, cells, seed + 1);
+}
+
+std::shared_ptr<const TetMesh> wavy_grid(const Vec3& offset) {
+    MixedGridOptions o;
+    o.nx = o.ny = o.nz = 3;
+    o.offset = offset;
+    TetMesh mesh = tetrahedralize(make_mixed_grid(o)).value();
+    std::vector<double> wave;
+    for (const Vec3& p : mesh.points()) {
+        wave.push_back(0.5 + 0.45 * std::sin(1.3 * p.x) * std::cos(0.9 * p.y + 0.4 * p.z));
+    }
+    if (!mesh.add_point_field(make_double_field("wave", 1, std::move(wave))).ok()) return nullptr;
+    return std::make_shared<const TetMesh>(std::move(mesh));
 }
 
 }  // namespace tr::testing

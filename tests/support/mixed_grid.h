@@ -2,13 +2,16 @@
 // Random conforming mixed meshes for tests and benchmarks: an nx * ny * nz grid of boxes, each
 // column or box a hexahedron, two wedges, six pyramids around a centre point, or twelve tets,
 // with points numbered in random order and an affine map applied; a twisted stack of hexagonal
-// and pentagonal prisms, hexahedra and wedges; and renumbering and cutting any mesh.
+// and pentagonal prisms, hexahedra and wedges; renumbering and cutting any mesh; and a small
+// wavy field on a grid of tets.
 
 #include <core/math.h>
+#include <mesh/tet_mesh.h>
 #include <mesh/unstructured_mesh.h>
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -68,5 +71,10 @@ UnstructuredMesh extract_cells(const UnstructuredMesh& mesh, const std::vector<s
 
 // `mesh` with its points and cells numbered at random (seeded); unused points are dropped.
 UnstructuredMesh shuffle_mesh(const UnstructuredMesh& mesh, std::uint32_t seed);
+
+// A 3 x 3 x 3 mixed grid (seed 1) moved by `offset` and split into tets, with the point field
+// "wave" = 0.5 + 0.45 sin(1.3 x) cos(0.9 y + 0.4 z), in [0.05, 0.95]: a small volume with
+// structure for the rendering tests.
+std::shared_ptr<const TetMesh> wavy_grid(const Vec3& offset = Vec3(0.0));
 
 }  // namespace tr::testing
