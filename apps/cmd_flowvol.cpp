@@ -1,5 +1,7 @@
-// tetrender flowvol MESH --vectors NAME --seed-center x,y,z --seed-size w,h: dye released
-// through a polygon, grown layer by layer through the flow, rendered without sorting.
+// tetrender flowvol MESH --vectors NAME [--seed-center x,y,z] [--seed-size w,h] [--dt T]: dye
+// released through a polygon, grown layer by layer through the flow, rendered without sorting;
+// what is not given is chosen from the flow (pipeline/flow_volume_scene.h choose_flow_spec) and
+// said, and a small dye is framed alone.
 #include <apps/cli_checks.h>
 #include <apps/cli_common.h>
 #include <apps/commands.h>
@@ -31,6 +33,7 @@ struct FlowvolArgs {
     std::string frames;
     std::string mesh_out;
     std::string size = "800x600";
+    FlowSpecChoices choose;  // what the command line left out
 };
 
 int run_flowvol(FlowvolArgs args) {
@@ -40,9 +43,12 @@ int run_flowvol(FlowvolArgs args) {
         return kExitUsage;
     }
     FlowVolumeSpec& spec = args.spec;
-    spec.seed_center = Vec3(args.seed_center[0], args.seed_center[1], args.seed_center[2]);
-    spec.seed_width = args.seed_size[0];
-    spec.seed_height = args.seed_size[1];
+    if (!args.choose.seed_center)
+        spec.seed_center = Vec3(args.seed_center[0], args.seed_center[1], args.seed_center[2]);
+    if (!args.choose.seed_size) {
+        spec.seed_width = args.seed_size[0];
+        spec.seed_height = args.seed_size[1];
+    }
     if (!args.seed_normal.empty()) {
         const auto& n = args.seed_normal;
         if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2]) ||
@@ -76,6 +82,15 @@ int run_flowvol(FlowvolArgs args) {
     auto loaded = pipeline.mesh(volume);
     if (!loaded.ok()) return report_error(loaded.error());
     scene.volumes.push_back(volume);
+    std::vector<std::string> chosen;  // said with the picture: a failure is one line
+    {
+        auto domain = pipeline.flow_domain(volume);
+        if (!domain.ok()) return report_error(domain.error());
+        auto completed = choose_flow_spec(*domain, spec, args.choose, &chosen);
+        if (!completed.ok()) return report_error(completed.error());
+        spec = std::move(completed).value();
+    }
+    spec.fit_camera_to_dye = true;
     scene.camera = framing_camera((*loaded)->tets.bounds(), kDefaultViewDirection);
     scene.width = width;
     scene.height = height;
@@ -103,6 +118,7 @@ int run_flowvol(FlowvolArgs args) {
         "stretched, %zu stopped\n",
         spec.steps, fv.mesh.num_tets(), stats.number("grow_ms"), fv.particles_inserted,
         fv.particles_stopped);
+    print_notes(chosen);
     print_notes(result->notes);
     if (!args.mesh_out.empty()) {
         const Status written = write_vtu(fv.mesh, args.mesh_out);
@@ -125,15 +141,17 @@ std::function<int()> add_flowvol_command(CLI::App& app) {
         "flowvol", "Grow a flow volume from a dye polygon through a vector field and render it");
     cmd->add_option("mesh", args->mesh, "Mesh with a 3-component point array")->required();
     cmd->add_option("--vectors", args->spec.vectors, "The velocity array")->required();
-    cmd->add_option("--seed-center", args->seed_center, "Dye polygon centre x,y,z")
-        ->required()
-        ->expected(3)
-        ->delimiter(',');
-    cmd->add_option("--seed-size", args->seed_size, "Dye polygon width,height")
-        ->required()
-        ->expected(2)
-        ->delimiter(',')
-        ->check(kPositive);
+    auto* seed_center =
+        cmd->add_option("--seed-center", args->seed_center,
+                        "Dye polygon centre x,y,z (default: where the flow is fastest)")
+            ->expected(3)
+            ->delimiter(',');
+    auto* seed_size = cmd->add_option("--seed-size", args->seed_size,
+                                      "Dye polygon width,height (default: an eighth of the "
+                                      "domain's diagonal each)")
+                          ->expected(2)
+                          ->delimiter(',')
+                          ->check(kPositive);
     cmd->add_option("--seed-normal", args->seed_normal,
                     "Dye polygon normal x,y,z (default: the flow direction at its centre)")
         ->expected(3)
@@ -142,7 +160,10 @@ std::function<int()> add_flowvol_command(CLI::App& app) {
                     "Quads per side of the polygon (default 32)")
         ->check(in_range(1, 4096));
     cmd->add_option("--steps", args->spec.steps, "Layers (default 50)")->check(in_range(1, 100000));
-    cmd->add_option("--dt", args->spec.dt, "Time per layer (default 0.05)")->check(kPositive);
+    auto* dt = cmd->add_option("--dt", args->spec.dt,
+                               "Time per layer (default: the front travels 40% of the domain's "
+                               "diagonal in --steps layers at the seed's speed)")
+                   ->check(kPositive);
     cmd->add_option("--split-threshold", args->spec.split_threshold,
                     "Split front edges longer than this many seed spacings (default 2; 0: off)")
         ->check(CLI::Number);
@@ -164,9 +185,12 @@ std::function<int()> add_flowvol_command(CLI::App& app) {
     cmd->add_option("--mesh-out", args->mesh_out,
                     "Write the flow volume (tets, concentration, age) as .vtu");
     cmd->add_option("--size", args->size, "Image size WxH (default 800x600)");
-    return [args, start_time] {
+    return [args, start_time, seed_center, seed_size, dt] {
         FlowvolArgs a = *args;
         if (start_time->count() > 0) a.spec.start_time = a.start_time;
+        a.choose.seed_center = seed_center->count() == 0;
+        a.choose.seed_size = seed_size->count() == 0;
+        a.choose.dt = dt->count() == 0;
         return run_flowvol(std::move(a));
     };
 }

@@ -1,7 +1,11 @@
 #include <pipeline/flow_volume_scene.h>
+#include <pipeline/quick_look.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <exception>
+#include <limits>
 #include <utility>
 
 namespace tr {
@@ -35,6 +39,115 @@ FlowVolumeSpec default_flow_spec(const FlowDomain& domain) {
     speed = counted > 0 ? speed / static_cast<double>(counted) : 0;
     spec.dt = speed > 0 ? 0.5 * diagonal / (spec.steps * speed) : 0.05;
     return spec;
+}
+
+namespace {
+
+std::string xyz(const Vec3& p) {
+    char text[96];
+    std::snprintf(text, sizeof text, "(%.4g, %.4g, %.4g)", p.x, p.y, p.z);
+    return text;
+}
+
+std::string number(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", x);
+    return text;
+}
+
+// The centroid of a real tet at point `p` (inside the domain even when `p` is on its boundary);
+// the point itself when no tet uses it.
+Vec3 inside_at(const TetMesh& mesh, std::size_t p) {
+    for (std::size_t t = 0; t < mesh.num_real_tets(); ++t) {
+        const auto& tet = mesh.tets()[t];
+        if (std::find(tet.begin(), tet.end(), p) == tet.end()) continue;
+        Vec3 sum(0.0);
+        for (auto v : tet) sum += mesh.points()[v];
+        return sum / 4.0;
+    }
+    return mesh.points()[p];
+}
+
+}  // namespace
+
+Result<FlowVolumeSpec> choose_flow_spec(const FlowDomain& domain, FlowVolumeSpec spec,
+                                        const FlowSpecChoices& choose,
+                                        std::vector<std::string>* notes) {
+    TR_TRY_STATUS(check_flow_spec(domain, spec));
+    const TetMesh& mesh = domain.mesh();
+    const Field& velocity = *find_field(mesh.point_fields(), spec.vectors);
+    std::vector<std::pair<double, std::size_t>> speeds;  // finite, non-zero
+    for (std::size_t p = 0; p < velocity.num_tuples(); ++p) {
+        const double m = velocity.magnitude(p);
+        if (std::isfinite(m) && m > 0) speeds.emplace_back(m, p);
+    }
+    if (speeds.empty()) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          "the flow '" + spec.vectors +
+                              "' is zero everywhere: there is nothing to release dye into",
+                          domain.path);
+    }
+    const Bounds3 bounds = mesh.bounds();
+    const double diagonal = bounds.diagonal() > 0 ? bounds.diagonal() : 1.0;
+    const auto say = [&](std::string line) {
+        if (notes) notes->push_back(std::move(line));
+    };
+    // The seed's point: the fastest but for a thousandth (spikes), or the one nearest the centre
+    // given.
+    std::size_t seed_point = 0;
+    double seed_speed = 0;
+    if (choose.seed_center) {
+        const std::size_t rank = (speeds.size() - 1) * 999 / 1000;
+        std::nth_element(speeds.begin(), speeds.begin() + static_cast<std::ptrdiff_t>(rank),
+                         speeds.end());
+        seed_speed = speeds[rank].first;
+        seed_point = speeds[rank].second;
+        spec.seed_center = inside_at(mesh, seed_point);
+        say("no --seed-center: the dye is released at " + xyz(spec.seed_center) +
+            ", where the flow is fastest (speed " + number(seed_speed) + ")");
+    } else {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const auto& [m, p] : speeds) {
+            const double d = glm::length(mesh.points()[p] - spec.seed_center);
+            if (d < nearest) nearest = d, seed_point = p, seed_speed = m;
+        }
+    }
+    if (choose.seed_size) {
+        spec.seed_width = spec.seed_height = diagonal / 8;
+        say("no --seed-size: the dye polygon is " + number(spec.seed_width) + " x " +
+            number(spec.seed_height) + " (an eighth of the domain's diagonal a side)");
+    }
+    if (choose.dt) {
+        spec.dt = kDyeTravel * diagonal / (spec.steps * seed_speed);
+        say("no --dt: dt = " + number(spec.dt) + ", so that the front travels " +
+            std::to_string(static_cast<int>(std::lround(100 * kDyeTravel))) +
+            "% of the domain's diagonal in " + std::to_string(spec.steps) +
+            " layers at the seed's speed");
+    }
+    return spec;
+}
+
+std::optional<Camera> dye_camera(const TetMesh& dye, const Camera& camera, int width, int height) {
+    const Bounds3 bounds = dye.bounds();
+    if (dye.num_tets() == 0 || bounds.empty() || camera.parallel) return std::nullopt;
+    const CameraFrame frame(camera, width, height);
+    Vec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p((corner & 1) ? bounds.hi.x : bounds.lo.x,
+                     (corner & 2) ? bounds.hi.y : bounds.lo.y,
+                     (corner & 4) ? bounds.hi.z : bounds.lo.z);
+        const Vec3 image = frame.project(p);
+        if (!(image.z > 0)) return std::nullopt;  // behind the eye
+        lo = glm::min(lo, image), hi = glm::max(hi, image);
+    }
+    if (hi.x - lo.x >= 0.5 * width || hi.y - lo.y >= 0.5 * height) return std::nullopt;
+    CameraFit fit;
+    fit.from = camera.position - camera.focal_point;
+    fit.width = width;
+    fit.height = height;
+    fit.view_angle = camera.view_angle;
+    const TetMesh* meshes[] = {&dye};
+    return fitting_camera(meshes, fit);
 }
 
 Status check_flow_spec(const FlowDomain& domain, const FlowVolumeSpec& spec) {

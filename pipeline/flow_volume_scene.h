@@ -38,6 +38,35 @@ std::vector<std::string> vector_arrays(const TetMesh& mesh);
 // dye at the mean speed over half the diagonal.
 FlowVolumeSpec default_flow_spec(const FlowDomain& domain);
 
+// What a user left for the data to choose (`tetrender flowvol` without --seed-center,
+// --seed-size or --dt).
+struct FlowSpecChoices {
+    bool seed_center = false;
+    bool seed_size = false;
+    bool dt = false;
+};
+
+// The share of the domain's bounding diagonal the dye's front travels over its steps when dt is
+// chosen (at the speed where it is released).
+inline constexpr double kDyeTravel = 0.4;
+
+// Fills what `choose` names from spec.vectors at the loaded step: the seed's centre where the
+// flow is fastest (the centroid of a real tet at the mesh point of the 99.9th percentile of
+// speed, robust to a few spikes: in a channel or a room, near the inlet); its size an eighth of
+// the domain's diagonal a side; dt so that the front, at the speed at the seed's centre (with a
+// given centre: at the point nearest it), travels kDyeTravel of the diagonal in spec.steps
+// layers. `notes` receives one line per choice, with its value. Errors: check_flow_spec's; no
+// point with a finite, non-zero speed ("the flow is zero everywhere"). Cost: O(points + tets).
+Result<FlowVolumeSpec> choose_flow_spec(const FlowDomain& domain, FlowVolumeSpec spec,
+                                        const FlowSpecChoices& choose,
+                                        std::vector<std::string>* notes = nullptr);
+
+// A camera framing the dye `dye` from `camera`'s direction (quick_look.h fitting_camera, the
+// same view angle) when the dye covers less than half of `width` x `height` in both directions
+// from `camera`; nothing when it covers more, is empty, lies partly behind the eye, or the
+// camera is orthographic.
+std::optional<Camera> dye_camera(const TetMesh& dye, const Camera& camera, int width, int height);
+
 // Checks a spec against the domain before growing: a vector array of it. Error kNotFound
 // listing the vector arrays.
 Status check_flow_spec(const FlowDomain& domain, const FlowVolumeSpec& spec);

@@ -52,6 +52,10 @@ struct FlowVolumeSpec {
     double opacity = 0.3;                 // of a slab of full concentration, unit_distance thick
     std::optional<double> unit_distance;  // default: the mesh's bounding diagonal / 30
     bool context = false;                 // the domain's boundary as a faint veil
+    // Not a scene-file key (`tetrender flowvol` sets it): when the grown dye covers less than
+    // half the picture's width and height, the camera is turned to the dye's own extent, from
+    // the same direction (pipeline/flow_volume_scene.h dye_camera).
+    bool fit_camera_to_dye = false;
 };
 
 // One volume of a scene: a mesh, the array rendered and its transfer function. A scene with

@@ -41,6 +41,14 @@ Result<RenderResult> render_flow_volume(Pipeline& pipeline, const Scene& scene,
     TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
     FlowVolumeView view{scene.camera,    scene.width,        scene.height, scene.background,
                         opaque.layers(), *scene.flow_volume, nullptr};
+    if (scene.flow_volume->fit_camera_to_dye) {
+        if (auto camera = dye_camera(fv->mesh, scene.camera, scene.width, scene.height)) {
+            view.camera = *camera;
+            result.notes.push_back(
+                "the dye covers less than half the picture: the camera frames "
+                "the dye alone");
+        }
+    }
     SurfaceMesh boundary;
     if (scene.flow_volume->context) {
         boundary = boundary_surface(domain.mesh(), *domain.adjacency);

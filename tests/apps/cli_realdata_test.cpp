@@ -1,6 +1,7 @@
 // `tetrender info` on every dataset in ../shared/data, checked against the facts its SOURCE.md
 // states (measured with VTK 9.1 by someone else): cell counts, distinct points, volume.
 #include <tests/apps/cli_runner.h>
+#include <tests/support/image_check.h>
 #include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
@@ -134,6 +135,52 @@ TEST(FlowvolOnRealData, DiskOutRefVelocity) {
     EXPECT_GT(j["tetrahedralization"]["volume"].get<double>(), 0.0);
     EXPECT_TRUE(std::filesystem::exists(dir + "/fv.png"));
 }
+
+// `flowvol MESH --vectors V -o out` alone on each real flow: the seed, its size and dt chosen
+// from the flow and said, and dye covering at least the stated share of the picture (each the
+// measured share minus a third of it; pixels more than 0.02 from the background).
+struct FlowCase {
+    const char* file;
+    const char* vectors;
+    double min_share;
+};
+
+void PrintTo(const FlowCase& c, std::ostream* os) { *os << c.file; }
+
+class FlowvolDefaults : public ::testing::TestWithParam<FlowCase> {};
+
+TEST_P(FlowvolDefaults, ChosenFromTheFlowTheDyeFillsThePicture) {
+    if (!require_data()) GTEST_SKIP() << "no shared data at " << data_dir();
+    const FlowCase& c = GetParam();
+    const testing::TempDir temp;
+    const std::string out = temp.string() + "/fv.pfm";
+    const auto run = testing::run_cli(
+        "flowvol " + testing::shell_quote((data_dir() / c.file).string()) + " --vectors " +
+        c.vectors + " --size 160x120 -o " + testing::shell_quote(out));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    for (const char* said :
+         {"no --seed-center: the dye is released at", "no --seed-size:", "no --dt: dt = "}) {
+        EXPECT_NE(run.err.find(said), std::string::npos) << said << "\n" << run.err;
+    }
+    const Image picture = testing::read_pfm(out);
+    ASSERT_EQ(picture.width, 160);
+    std::size_t dye = 0;
+    for (const Vec3f& p : picture.pixels)
+        dye += glm::length(p - Vec3f(0.02f, 0.02f, 0.05f)) > 0.02f;
+    const double share = static_cast<double>(dye) / picture.pixels.size();
+    EXPECT_GE(share, c.min_share);
+}
+
+// Measured shares (160x120) in the comments.
+INSTANTIATE_TEST_SUITE_P(
+    Flows, FlowvolDefaults,
+    ::testing::Values(FlowCase{"bluntfin/bluntfin.vtu", "Velocity", 0.30},             // 0.462
+                      FlowCase{"carotid/carotid.vtk", "vectors", 0.11},                // 0.167
+                      FlowCase{"combustor/combustor.vtu", "Velocity", 0.36},           // 0.542
+                      FlowCase{"cylinder_tets/CylinderLinear.vtk", "velocity", 0.18},  // 0.273
+                      FlowCase{"lox_post/lox_post.vtu", "Velocity", 0.22},             // 0.336
+                      FlowCase{"office/office.binary.vtk", "vectors", 0.20},           // 0.307
+                      FlowCase{"disk_out_ref/disk_out_ref.ex2", "V", 0.17}));          // 0.254
 
 }  // namespace
 }  // namespace tr
