@@ -374,8 +374,9 @@ int run_render(const RenderArgs& args) {
         return report_error(done.error());
     }
     // One picture of `view`: rendered, notes printed, annotated.
-    const bool legend = args.legend == "on" ||
-                        (args.legend == "auto" && !scene_mode && args.quick.look != "classic");
+    const bool legend =
+        args.legend == "on" ||
+        (args.legend == "auto" && legend_by_default(scene_mode, args.quick.look == "classic"));
     const auto picture = [&](const Scene& view) -> Result<RenderResult> {
         TR_TRY(RenderResult result, pipeline.render(view, options));
         print_notes(quick_notes);

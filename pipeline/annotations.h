@@ -27,6 +27,13 @@ struct AnnotationOptions {
     Vec3f box_color{0.85f, 0.85f, 0.85f};
 };
 
+// Whether a picture carries the legend when the user did not say (`--legend auto`): a quick
+// look of a mesh file does, except in the classic look (whose pictures stay comparable with
+// older ones); a scene file's picture does not (compared pixel for pixel with others').
+inline bool legend_by_default(bool scene_file, bool classic_look) {
+    return !scene_file && !classic_look;
+}
+
 // Draws what `options` asks onto `image`, which must be the scene's picture (scene.width x
 // scene.height). The bounding box is that of every volume's mesh, taken from `pipeline`'s cache
 // (loaded if it is not there). Errors: an image of another size; a legend's (a picture too

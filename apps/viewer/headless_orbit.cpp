@@ -15,6 +15,13 @@
 namespace tr::viewer {
 namespace {
 
+// The picture shown, annotated as asked.
+Image picture_of(VolumeView& view, const HeadlessOptions& options) {
+    Image image = view.active().read_image();
+    if (options.annotate) options.annotate(image);
+    return image;
+}
+
 // What the orbit's frames drew and how long they took, for the line it prints.
 struct OrbitTotals {
     int frames = 0;
@@ -184,11 +191,11 @@ int run_headless_orbit(VolumeView& view, ViewerPanel* panel, const HeadlessOptio
         totals.frame_ms += ms_since(frame_start);
         if (!options.frames_dir.empty()) {
             const Status frame_written =
-                write_image(view.active().read_image(), frame_path(options.frames_dir, i));
+                write_image(picture_of(view, options), frame_path(options.frames_dir, i));
             if (!frame_written.ok()) return apps::report_error(frame_written.error());
         }
     }
-    const Status written = write_image(view.active().read_image(), options.screenshot);
+    const Status written = write_image(picture_of(view, options), options.screenshot);
     if (!written.ok()) return apps::report_error(written.error());
     print_orbit_stats(view, totals, flow, animated, particles, batch);
     return apps::kExitOk;

@@ -4,7 +4,9 @@
 
 #include <apps/viewer/viewer_panel.h>
 #include <apps/viewer/volume_view.h>
+#include <core/image.h>
 
+#include <functional>
 #include <string>
 
 namespace tr::viewer {
@@ -14,6 +16,9 @@ struct HeadlessOptions {
     int frames = 1;          // frames along the orbit (at least 1)
     double orbit = 0;        // degrees the camera turns over them (the last frame: all of it)
     std::string frames_dir;  // when set, every frame also written as frame_NNNN.png there
+    // When set, applied to every picture written (the screenshot and each frame): the legend
+    // `tetrender render` draws (viewer_main.cpp).
+    std::function<void(Image&)> annotate;
 };
 
 // Draws `options.frames` frames of `view` from its scene's camera turned by orbit * (i + 1) /

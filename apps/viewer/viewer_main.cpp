@@ -10,6 +10,7 @@
 #include <apps/viewer/viewer_scene.h>
 #include <apps/viewer/volume_view.h>
 #include <core/memory_budget.h>
+#include <pipeline/annotations.h>
 #include <project/colormap.h>
 #include <project/gl/gl_renderer.h>
 
@@ -58,8 +59,8 @@ struct Args {
     apps::QuickLookArgs quick;  // mesh mode: the quick look's options beyond the four above
     std::vector<std::string> quick_given;  // those given (refused with a scene file)
     bool panel_in_screenshot = false;
-    std::string legend = "on";  // the colour legend (ImGui): on or off
-    int exit_after_frames = 0;  // interactive mode: quit after this many frames (tests)
+    std::string legend = "auto";  // on, off, or auto: on for a mesh, off for a scene file
+    int exit_after_frames = 0;    // interactive mode: quit after this many frames (tests)
     // A flow volume from the command line (as `tetrender flowvol` names the options).
     std::string flowvol_vectors;
     std::vector<double> seed_center, seed_size, seed_normal;
@@ -236,6 +237,20 @@ int load_scene(const Args& args, const ViewerOptions& options, bool headless, Vi
     return apps::kExitOk;
 }
 
+// `tetrender render`'s legend of the scene onto a screenshot of it (pipeline/annotations.h); a
+// picture too small for it is still written, with a note.
+void draw_legend(ViewerScene& vs, Image& image) {
+    Scene scene = vs.scene;
+    scene.width = image.width;
+    scene.height = image.height;
+    AnnotationOptions legend;
+    const Status drawn = annotate(image, scene, *vs.pipeline, legend);
+    if (!drawn.ok()) {
+        std::fprintf(stderr, "tetrender-view: note: no legend: %s\n",
+                     drawn.error().message.c_str());
+    }
+}
+
 // The window (hidden when headless), its OpenGL context and the ImGui panel; the view drawn in
 // it, interactively or along the headless orbit. Returns the exit code.
 int run_on_display(const Args& args, ViewerScene& vs, Integrator integrator, bool headless) {
@@ -298,15 +313,21 @@ int run_on_display(const Args& args, ViewerScene& vs, Integrator integrator, boo
         }
         {
             VolumeView view(vs, **renderer, integrator, !headless);
+            // The legend: render's in a screenshot, the panel's (ImGui) in the window.
+            const bool legend =
+                args.legend == "on" ||
+                (args.legend == "auto" &&
+                 legend_by_default(apps::is_scene_file(args.input), args.quick.look == "classic"));
             std::optional<ViewerPanel> panel;
             if (ui) {
                 panel.emplace(view);
-                panel->set_legend(args.legend == "on");
+                panel->set_legend(legend);
             }
             if (headless) {
-                code =
-                    run_headless_orbit(view, panel ? &*panel : nullptr,
-                                       {args.screenshot, args.frames, args.orbit, args.frames_dir});
+                HeadlessOptions shot{args.screenshot, args.frames, args.orbit, args.frames_dir, {}};
+                if (legend && !panel)
+                    shot.annotate = [&vs](Image& image) { draw_legend(vs, image); };
+                code = run_headless_orbit(view, panel ? &*panel : nullptr, shot);
             } else {
                 code = run_interactive(window, view, *panel, args.exit_after_frames);
             }
@@ -455,9 +476,10 @@ int main(int argc, char** argv) {
         ->check(tr::apps::kFinite)
         ->needs(vectors);
     app.add_option("--legend", args.legend,
-                   "The colour legend (name, range, ticks) in the window: on (default) or off; "
-                   "in a headless screenshot only with --panel-in-screenshot")
-        ->check(CLI::IsMember({"on", "off"}));
+                   "The colour legend (name, range, ticks): on, off, or auto (default: on for a "
+                   "mesh, off for a scene file); a screenshot carries render's, the window (and "
+                   "--panel-in-screenshot) the panel's")
+        ->check(CLI::IsMember({"auto", "on", "off"}));
     app.add_flag("--panel-in-screenshot", args.panel_in_screenshot,
                  "Headless: draw the ImGui panel into the screenshot");
     app.add_option("--exit-after-frames", args.exit_after_frames,

@@ -141,14 +141,14 @@ TEST(ViewerFlowVolume, GrowsOverFramesAndTheLastFrameIsComplete) {
     const std::string early = t.dir + "/early.pfm";
     run = run_viewer(shell_quote(t.mesh) +
                      " --flowvol-vectors velocity --seed-center 0.3,0.5,0.5 --seed-size 0.5,0.4 "
-                     "--seed-res 8 --steps 2 --dt 0.07 --size 240x180 --screenshot " +
+                     "--seed-res 8 --steps 2 --dt 0.07 --size 240x180 --legend off --screenshot " +
                      shell_quote(early));
     ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_NE(run.err.find("flow volume: 2 layers"), std::string::npos) << run.err;
     const std::string full = t.dir + "/full.pfm";
     run = run_viewer(shell_quote(t.mesh) +
                      " --flowvol-vectors velocity --seed-center 0.3,0.5,0.5 --seed-size 0.5,0.4 "
-                     "--seed-res 8 --steps 20 --dt 0.07 --size 240x180 --screenshot " +
+                     "--seed-res 8 --steps 20 --dt 0.07 --size 240x180 --legend off --screenshot " +
                      shell_quote(full));
     ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_NE(run.err.find("flow volume: 20 layers"), std::string::npos) << run.err;

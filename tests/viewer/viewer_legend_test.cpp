@@ -1,8 +1,10 @@
-// The viewer's colour legend (ImGui): drawn at the window's right edge when on (the default),
-// gone with --legend off, never in a plain headless screenshot (those stay equal to the CPU
-// renderer's picture), and a bad --legend value refused in one line.
+// The viewer's colour legend, on by default for a mesh and off for a scene file: a headless
+// screenshot carries `tetrender render`'s (the same picture as render's, legend and all), the
+// window (and --panel-in-screenshot) the panel's at its right edge; a bad --legend value is
+// refused in one line.
 #include <apps/viewer/viewer_scene.h>
 #include <mesh/point_data.h>
+#include <tests/apps/cli_runner.h>
 #include <tests/support/image_check.h>
 #include <tests/viewer/viewer_runner.h>
 #include <tests/viewer/viewer_test_scene.h>
@@ -17,6 +19,8 @@
 namespace tr {
 namespace {
 
+using testing::ImageBounds;
+using testing::images_match;
 using testing::read_pfm;
 using testing::require_xvfb;
 using testing::run_viewer;
@@ -34,7 +38,7 @@ int differing(const Image& a, const Image& b, int x0, int x1) {
     return n;
 }
 
-TEST(ViewerLegend, OnByDefaultOffWhenAskedNeverInAPlainScreenshot) {
+TEST(ViewerLegend, APanelScreenshotShowsThePanelsLegendWhenOn) {
     if (!require_xvfb()) GTEST_SKIP() << "no xvfb-run";
     const testing::TestScene t = testing::make_test_scene();
     auto shot = [&](const std::string& options, const std::string& name) {
@@ -44,19 +48,69 @@ TEST(ViewerLegend, OnByDefaultOffWhenAskedNeverInAPlainScreenshot) {
         EXPECT_EQ(run.exit_code, 0) << run.err;
         return read_pfm(path);
     };
-    const Image with = shot("--panel-in-screenshot", "with");
+    const Image with = shot("--panel-in-screenshot --legend on", "with");
     const Image without = shot("--panel-in-screenshot --legend off", "without");
-    const Image plain_on = shot("--legend on", "plain_on");
-    const Image plain_off = shot("--legend off", "plain_off");
+    const Image scene_default = shot("--panel-in-screenshot", "default");
     ASSERT_EQ(with.width, 240);
     ASSERT_EQ(without.width, 240);
     // The legend's bar, labels and backing in the right quarter of the picture.
     const int right = differing(with, without, 180, 240);
     std::printf("legend: %d pixels differ in the right quarter\n", right);
     EXPECT_GT(right, 4500);  // measured 5878 (Mesa llvmpipe, ImGui default font), less 23%
-    // Plain headless screenshots have no ImGui: bit-identical either way.
-    ASSERT_EQ(plain_on.width, 240);
-    EXPECT_EQ(plain_on.pixels, plain_off.pixels);
+    // A scene file: off unless asked.
+    ASSERT_EQ(scene_default.width, 240);
+    EXPECT_EQ(differing(scene_default, without, 0, 240), 0);
+}
+
+// A mesh's headless screenshot is render's quick look, legend included; a scene file's has none
+// unless asked.
+TEST(ViewerLegend, AScreenshotCarriesRendersLegend) {
+    if (!require_xvfb()) GTEST_SKIP() << "no xvfb-run";
+    const testing::TestScene t = testing::make_test_scene();
+    const std::string size = " --size 240x180 --integrator preintegrated ";
+    auto viewer_shot = [&](const std::string& input, const std::string& options,
+                           const std::string& name) {
+        const std::string path = t.dir + "/" + name + ".pfm";
+        const auto run =
+            run_viewer(shell_quote(input) + size + options + " --screenshot " + shell_quote(path));
+        EXPECT_EQ(run.exit_code, 0) << run.err;
+        return read_pfm(path);
+    };
+    auto render_shot = [&](const std::string& options, const std::string& name) {
+        const std::string path = t.dir + "/" + name + ".pfm";
+        const auto run = testing::run_cli("render " + shell_quote(t.mesh) + size + options +
+                                          " -o " + shell_quote(path));
+        EXPECT_EQ(run.exit_code, 0) << run.err;
+        return read_pfm(path);
+    };
+    const Image viewer_on = viewer_shot(t.mesh, "", "viewer_on");
+    const Image viewer_off = viewer_shot(t.mesh, "--legend off", "viewer_off");
+    const Image render_on = render_shot("", "render_on");
+    const Image render_off = render_shot("--legend off", "render_off");
+    ASSERT_EQ(viewer_on.width, 240);
+    ASSERT_EQ(render_on.width, 240);
+    // Where render's legend changes the picture, the viewer's changes it too.
+    int legend = 0, shown = 0;
+    for (std::size_t p = 0; p < render_on.pixels.size(); ++p) {
+        const Vec3f d = glm::abs(render_on.pixels[p] - render_off.pixels[p]);
+        if (std::max({d.x, d.y, d.z}) <= 0.5f / 255) continue;
+        ++legend;
+        const Vec3f e = glm::abs(viewer_on.pixels[p] - viewer_off.pixels[p]);
+        shown += std::max({e.x, e.y, e.z}) > 0.5f / 255;
+    }
+    std::printf("legend: %d pixels, %d of them in the viewer's\n", legend, shown);
+    EXPECT_GT(legend, 2000);              // measured 2402 (Mesa llvmpipe), less a sixth
+    EXPECT_GE(shown, legend * 99 / 100);  // measured all
+    // And the two pictures agree as they do without it (viewer_test.cpp, "plain": 79.2 dB;
+    // measured here 79.6 dB, largest difference 0.00152).
+    EXPECT_TRUE(
+        images_match(viewer_on, render_on, Vec3f(0.0f), {77.2, 0.002}, "viewer_legend_vs_render"));
+    // A scene file: none by default, render's with --legend on.
+    const Image scene_default = viewer_shot(t.scene, "", "scene_default");
+    const Image scene_off = viewer_shot(t.scene, "--legend off", "scene_off");
+    const Image scene_on = viewer_shot(t.scene, "--legend on", "scene_on");
+    EXPECT_EQ(scene_default.pixels, scene_off.pixels);
+    EXPECT_GT(differing(scene_on, scene_off, 0, 240), 1700);  // measured 2058, less a sixth
 }
 
 TEST(ViewerLog, ShowsTheDecadesOfTheMeshScalar) {

@@ -57,7 +57,8 @@ TEST_P(ViewerRealData, OpensAndDraws) {
     std::string args =
         testing::shell_quote((std::filesystem::path(testing::shared_data_dir()) / c.file).string());
     if (*c.scalar) args += " --scalar " + testing::shell_quote(c.scalar);
-    args += " --size 128x96 --frames 2 --orbit 30 --screenshot " + testing::shell_quote(out);
+    args += " --size 128x96 --frames 2 --orbit 30 --legend off --screenshot " +
+            testing::shell_quote(out);
     const auto run = testing::run_viewer(args);
     ASSERT_EQ(run.exit_code, 0) << run.err;
     EXPECT_NE(run.err.find("frames 2,"), std::string::npos) << run.err;

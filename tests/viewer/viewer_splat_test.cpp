@@ -57,9 +57,9 @@ TEST(ViewerSplat, TheHeadlessPictureIsRendersAndTheCyclePlays) {
     const std::string dir = temp.string();
     const std::string lattice = shell_quote(write_lattice(dir));
     const std::string quick = " --scalar h --size 160x120 ";
-    // Scalar splats: the same picture, bit for bit.
-    auto run = run_cli("render " + lattice + quick + "--method splat --legend off -o " +
-                       shell_quote(dir + "/cpu.pfm"));
+    // Scalar splats: the same picture, bit for bit, legend (render's, on for a mesh) and all.
+    auto run =
+        run_cli("render " + lattice + quick + "--method splat -o " + shell_quote(dir + "/cpu.pfm"));
     ASSERT_EQ(run.exit_code, 0) << run.err;
     run =
         run_viewer(lattice + quick + "--method splat --screenshot " + shell_quote(dir + "/gl.pfm"));
@@ -71,7 +71,7 @@ TEST(ViewerSplat, TheHeadlessPictureIsRendersAndTheCyclePlays) {
     EXPECT_GT(testing::lit_fraction(cpu, 0.05f), 0.1);
     // Vector splats: the CLI's 4 frames of the cycle, and 6 viewer frames (no orbit).
     run = run_cli("render " + lattice + quick + "--method splat --vectors velocity --cycle 4 " +
-                  "--legend off --frames " + shell_quote(dir + "/cli"));
+                  "--frames " + shell_quote(dir + "/cli"));
     ASSERT_EQ(run.exit_code, 0) << run.err;
     run = run_viewer(lattice + quick + "--method splat --vectors velocity --cycle 4 --frames 6 " +
                      "--frames-dir " + shell_quote(dir + "/view") + " --screenshot " +

@@ -275,7 +275,8 @@ TEST(Viewer, AMeshIsTheQuickLookOfRenderWithItsOptions) {
         const std::string gl_path = t.dir + "/" + c.name + "_gl.pfm";
         const std::string cpu_path = t.dir + "/" + c.name + "_cpu.pfm";
         auto run = run_viewer(shell_quote(t.mesh) + c.options +
-                              " --integrator preintegrated --screenshot " + shell_quote(gl_path));
+                              " --integrator preintegrated --legend off --screenshot " +
+                              shell_quote(gl_path));
         ASSERT_EQ(run.exit_code, 0) << run.err;
         run = testing::run_cli("render " + shell_quote(t.mesh) + c.options + " --legend off -o " +
                                shell_quote(cpu_path));
