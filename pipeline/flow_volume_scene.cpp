@@ -19,25 +19,17 @@ std::vector<std::string> vector_arrays(const TetMesh& mesh) {
 }
 
 FlowVolumeSpec default_flow_spec(const FlowDomain& domain) {
-    const TetMesh& mesh = domain.mesh();
     FlowVolumeSpec spec;
     if (!domain.vector_arrays.empty()) spec.vectors = domain.vector_arrays.front();
-    const Bounds3 bounds = mesh.bounds();
-    const double diagonal = bounds.diagonal() > 0 ? bounds.diagonal() : 1.0;
-    spec.seed_center = 0.5 * (bounds.lo + bounds.hi);
-    spec.seed_width = spec.seed_height = diagonal / 8;
     spec.seed_resolution = 16;
     spec.steps = 50;
-    double speed = 0;
-    std::size_t counted = 0;
-    if (const Field* v = find_field(mesh.point_fields(), spec.vectors)) {
-        for (std::size_t p = 0; p < v->num_tuples(); ++p) {
-            const double m = v->magnitude(p);
-            if (std::isfinite(m)) speed += m, ++counted;
-        }
-    }
-    speed = counted > 0 ? speed / static_cast<double>(counted) : 0;
-    spec.dt = speed > 0 ? 0.5 * diagonal / (spec.steps * speed) : 0.05;
+    // As `tetrender flowvol` chooses them; a still flow (or none) keeps the centre of the bounds.
+    auto chosen =
+        choose_flow_spec(domain, spec, {.seed_center = true, .seed_size = true, .dt = true});
+    if (chosen.ok()) return std::move(chosen).value();
+    const Bounds3 bounds = domain.mesh().bounds();
+    spec.seed_center = 0.5 * (bounds.lo + bounds.hi);
+    spec.seed_width = spec.seed_height = (bounds.diagonal() > 0 ? bounds.diagonal() : 1.0) / 8;
     return spec;
 }
 

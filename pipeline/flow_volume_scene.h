@@ -33,9 +33,9 @@ struct FlowDomain {
 // The 3-component point arrays of `mesh`.
 std::vector<std::string> vector_arrays(const TetMesh& mesh);
 
-// A seed for a mesh without a spec: the first vector array, the polygon at the bounds' centre,
-// an eighth of the diagonal wide and high, 16 quads a side, 50 steps of a dt that carries the
-// dye at the mean speed over half the diagonal.
+// A seed for a mesh without a spec (the viewer's flow panel): the first vector array, 16 quads
+// a side, 50 steps, and the seed, its size and dt as choose_flow_spec (below) chooses them; for
+// a flow that is zero everywhere, the seed at the bounds' centre and dt 0.05.
 FlowVolumeSpec default_flow_spec(const FlowDomain& domain);
 
 // What a user left for the data to choose (`tetrender flowvol` without --seed-center,

@@ -5,6 +5,7 @@
 #include <tests/apps/cli_runner.h>
 #include <tests/apps/realdata_scalars.h>
 #include <tests/support/image_check.h>
+#include <tests/support/sanitized.h>
 #include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
@@ -78,7 +79,9 @@ TEST_P(PbvrRealData, BothMethodsConvergeOnTheProjectedTetrahedraPicture) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedData, PbvrRealData, ::testing::ValuesIn(testing::kRealDataScalars),
+INSTANTIATE_TEST_SUITE_P(SharedData, PbvrRealData,
+                         ::testing::ValuesIn(testing::sanitized_subset(
+                             testing::kRealDataScalars, testing::light_under_sanitizers)),
                          [](const auto& info) {
                              std::string name = info.param.file;
                              return name.substr(0, name.find('/'));

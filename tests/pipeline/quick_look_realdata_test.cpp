@@ -110,18 +110,9 @@ TEST_P(QuickLookRealData, DefaultsCoverMoreOfTheFrameAndShowMoreOfTheField) {
     EXPECT_GE(new_look.spread, old_look.spread - 0.005);
 }
 
-// In the sanitizer build (tests/support/sanitized.h) the four sets that take 15 to 40 s there
-// are left out; the other twelve still read every format.
-bool light_under_sanitizers(const Case& c) {
-    for (const char* heavy : {"carotid", "can/", "iron_protein", "lox_post"}) {
-        if (std::string_view(c.file).find(heavy) != std::string_view::npos) return false;
-    }
-    return true;
-}
-
 INSTANTIATE_TEST_SUITE_P(Sets, QuickLookRealData,
-                         ::testing::ValuesIn(testing::sanitized_subset(testing::kRealDataScalars,
-                                                                       light_under_sanitizers)));
+                         ::testing::ValuesIn(testing::sanitized_subset(
+                             testing::kRealDataScalars, testing::light_under_sanitizers)));
 
 }  // namespace
 }  // namespace tr
