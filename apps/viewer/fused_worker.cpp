@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <new>
 
 namespace tr::viewer {
 
@@ -21,12 +20,6 @@ std::string_view fused_mode_name(FusedMode mode) {
 
 namespace {
 
-// Whether a request in `mode` has nothing more to draw at `target` repetitions.
-bool drawn_all(FusedMode mode, const ProgressiveStats& stats, bool failed, int target) {
-    if (failed) return true;
-    return mode == FusedMode::kPbvrImage ? stats.repetitions >= target : stats.exact;
-}
-
 // pbvr-image's options: the fused worker draws no pbvr-object.
 ProgressiveOptions fused_options(const PbvrSettings& settings) {
     ProgressiveOptions options;
@@ -36,22 +29,12 @@ ProgressiveOptions fused_options(const PbvrSettings& settings) {
 
 }  // namespace
 
-// The request being drawn.
-struct FusedWorker::Job {
-    FusedRequest request;
-    std::uint64_t id = 0;
-    bool fresh = false;   // begin() not yet called
-    bool active = false;  // a request has begun
-    std::string error;    // a step failed: nothing more for this request
-    std::chrono::steady_clock::time_point published;  // the last picture
-};
-
 FusedWorker::FusedWorker(std::vector<FusedMesh> meshes, std::vector<OpaqueSurface> opaque,
                          PbvrSettings settings)
-    : AccumulatingWorker(settings.repetitions),
+    : AccumulatingWorker(settings.repetitions, std::move(opaque), fused_options(settings),
+                         "out of memory while drawing the fused picture"),
       meshes_(std::move(meshes)),
-      settings_(std::move(settings)),
-      render_(std::move(opaque), fused_options(settings_)) {
+      settings_(std::move(settings)) {
     thread_ = std::thread([this] { run(); });
 }
 
@@ -60,53 +43,24 @@ FusedWorker::~FusedWorker() { stop_and_join(); }
 std::uint64_t FusedWorker::request(FusedRequest request) { return post(std::move(request)); }
 
 bool FusedWorker::finished_at(const FusedFrame& frame, int target) const {
-    return drawn_all(frame.mode, frame, !frame.error.empty(), target);
+    if (!frame.error.empty()) return true;
+    return frame.mode == FusedMode::kPbvrImage ? frame.repetitions >= target : frame.exact;
 }
 
-void FusedWorker::run() {
-    Job job;
-    const auto has_work = [&](int target) {
-        return job.active &&
-               !drawn_all(job.request.mode, render_.stats(), !job.error.empty(), target);
-    };
-    for (;;) {
-        int target = 0;
-        {
-            std::unique_lock lock(mutex_);
-            wake_.wait(lock, [&] { return stop_ || pending_.has_value() || has_work(target_); });
-            // Progressive: the exact picture (which cannot be interrupted) only once the camera
-            // has been still for kStillDelay since the quick picture, so that a drag never
-            // waits for one.
-            if (!stop_ && !pending_ && job.request.mode == FusedMode::kProgressive &&
-                render_.stats().repetitions > 0) {
-                wake_.wait_until(lock, job.published + kStillDelay,
-                                 [&] { return stop_ || pending_.has_value(); });
-            }
-            if (stop_) return;
-            if (pending_) {
-                job.request = std::move(pending_->first);
-                job.id = pending_->second;
-                job.fresh = true;
-                pending_.reset();
-            }
-            target = target_;
-        }
-        try {
-            if (job.fresh) begin(job);
-            step(job, target);
-        } catch (const std::bad_alloc&) {
-            render_.release_memory();
-            job.error = "out of memory while drawing the fused picture";
-        }
-        publish(job);
-    }
+// Progressive: the exact picture (which cannot be interrupted) only once the camera has been
+// still for kStillDelay since the quick picture, so that a drag never waits for one.
+void FusedWorker::wait_before_step(std::unique_lock<std::mutex>& lock, const Job& job) {
+    if (job.request.mode != FusedMode::kProgressive || render_.stats().repetitions == 0) return;
+    wake_.wait_until(lock, published_ + kStillDelay, [&] { return stop_ || pending_.has_value(); });
 }
 
-void FusedWorker::begin(Job& job) {
-    job.fresh = false;
-    job.active = true;
-    job.error.clear();
-    const FusedRequest& r = job.request;
+FusedFrame FusedWorker::frame_of(const Job& job) const {
+    FusedFrame frame;
+    frame.mode = job.request.mode;
+    return frame;
+}
+
+void FusedWorker::begin(const FusedRequest& r) {
     ProgressiveView view;
     view.camera = r.camera;
     view.width = r.width;
@@ -152,13 +106,6 @@ void FusedWorker::step(Job& job, int target) {
         preview_ms_per_pixel_ =
             ms_since(start) * scale * scale / (static_cast<double>(r.width) * r.height);
     }
-}
-
-void FusedWorker::publish(Job& job) {
-    job.published = std::chrono::steady_clock::now();
-    FusedFrame frame;
-    frame.mode = job.request.mode;
-    publish_frame(render_, job.id, job.error, std::move(frame));
 }
 
 }  // namespace tr::viewer

@@ -101,19 +101,15 @@ class FusedWorker : public AccumulatingWorker<FusedRequest, FusedFrame> {
     std::size_t num_volumes() const { return meshes_.size(); }
 
   private:
-    struct Job;
     bool finished_at(const FusedFrame& frame, int target) const override;
-    void run();
-    void begin(Job& job);
-    void step(Job& job, int target);  // one batch, or the exact picture
-    void publish(Job& job);
+    void begin(const FusedRequest& request) override;
+    void step(Job& job, int target) override;  // one batch, or the exact picture
+    FusedFrame frame_of(const Job& job) const override;
+    void wait_before_step(std::unique_lock<std::mutex>& lock, const Job& job) override;
 
     const std::vector<FusedMesh> meshes_;
     const PbvrSettings settings_;
-
-    // Worker thread only: the pictures, and the last quick picture's time per full-size pixel.
-    ProgressiveRender render_;
-    double preview_ms_per_pixel_ = 0;
+    double preview_ms_per_pixel_ = 0;  // worker thread only: the last quick picture's
 };
 
 }  // namespace tr::viewer

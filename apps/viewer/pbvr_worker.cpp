@@ -2,28 +2,19 @@
 #include <pipeline/methods/splat_method.h>
 
 #include <algorithm>
-#include <new>
 
 namespace tr::viewer {
 
-// The request being accumulated.
-struct PbvrWorker::Job {
-    PbvrRequest request;
-    std::uint64_t id = 0;
-    bool fresh = false;   // begin() not yet called
-    bool active = false;  // a request has begun
-    std::string error;    // a batch failed: nothing more for this request
-};
-
 PbvrWorker::PbvrWorker(const TetMesh& mesh, std::vector<OpaqueSurface> opaque, double longest_edge,
                        PbvrSettings settings)
-    : AccumulatingWorker(settings.repetitions),
+    : AccumulatingWorker(settings.repetitions, std::move(opaque),
+                         ProgressiveOptions{.image = settings.image,
+                                            .object = settings.object,
+                                            .max_kept_bytes = settings.max_kept_bytes},
+                         "out of memory while rendering particles"),
       mesh_(mesh),
       longest_edge_(longest_edge),
-      settings_(std::move(settings)),
-      render_(std::move(opaque), ProgressiveOptions{.image = settings_.image,
-                                                    .object = settings_.object,
-                                                    .max_kept_bytes = settings_.max_kept_bytes}) {
+      settings_(std::move(settings)) {
     thread_ = std::thread([this] { run(); });
 }
 
@@ -35,41 +26,7 @@ bool PbvrWorker::finished_at(const PbvrFrame& frame, int target) const {
     return frame.repetitions >= target;
 }
 
-void PbvrWorker::run() {
-    Job job;
-    for (;;) {
-        int target = 0;
-        {
-            std::unique_lock lock(mutex_);
-            wake_.wait(lock, [&] {
-                return stop_ || pending_.has_value() ||
-                       (job.active && job.error.empty() && render_.stats().repetitions < target_);
-            });
-            if (stop_) return;
-            if (pending_) {
-                job.request = std::move(pending_->first);
-                job.id = pending_->second;
-                job.fresh = true;
-                pending_.reset();
-            }
-            target = target_;
-        }
-        try {
-            if (job.fresh) begin(job);
-            run_batch(job, target);
-        } catch (const std::bad_alloc&) {
-            render_.release_memory();
-            job.error = "out of memory while rendering particles";
-        }
-        publish(job);
-    }
-}
-
-void PbvrWorker::begin(Job& job) {
-    job.fresh = false;
-    job.active = true;
-    job.error.clear();
-    const PbvrRequest& r = job.request;
+void PbvrWorker::begin(const PbvrRequest& r) {
     render_.begin(ProgressiveView{
         .camera = r.camera,
         .width = r.width,
@@ -78,7 +35,13 @@ void PbvrWorker::begin(Job& job) {
         .volumes = {{&mesh_, longest_edge_, r.scalar, r.scalar_version, r.tf, r.tf_version}}});
 }
 
-void PbvrWorker::run_batch(Job& job, int target) {
+PbvrFrame PbvrWorker::frame_of(const Job& job) const {
+    PbvrFrame frame;
+    frame.method = job.request.method;
+    return frame;
+}
+
+void PbvrWorker::step(Job& job, int target) {
     const PbvrRequest& r = job.request;
     if (r.method == ViewMethod::kSplat) return draw_splat(job, target);
     const ParticleMethod method = r.method == ViewMethod::kPbvrObject ? ParticleMethod::kPbvrObject
@@ -112,12 +75,6 @@ void PbvrWorker::draw_splat(Job& job, int target) {
         return;
     }
     render_.add_picture(made.value(), std::max(target - render_.stats().repetitions, 1));
-}
-
-void PbvrWorker::publish(Job& job) {
-    PbvrFrame frame;
-    frame.method = job.request.method;
-    publish_frame(render_, job.id, job.error, std::move(frame));
 }
 
 }  // namespace tr::viewer

@@ -72,18 +72,15 @@ class PbvrWorker : public AccumulatingWorker<PbvrRequest, PbvrFrame> {
     const PbvrSettings& settings() const { return settings_; }
 
   private:
-    struct Job;
     bool finished_at(const PbvrFrame& frame, int target) const override;
-    void run();
-    void begin(Job& job);
-    void run_batch(Job& job, int target);  // one batch towards `target` repetitions
+    void begin(const PbvrRequest& request) override;
+    void step(Job& job, int target) override;  // one batch towards `target` repetitions
+    PbvrFrame frame_of(const Job& job) const override;
     void draw_splat(Job& job, int target);
-    void publish(Job& job);
 
     const TetMesh& mesh_;
     const double longest_edge_;
     const PbvrSettings settings_;
-    ProgressiveRender render_;  // worker thread only
 };
 
 }  // namespace tr::viewer

@@ -8,20 +8,25 @@
 // is ready) and calls stop_and_join() first in its destructor (before its members go).
 //
 // AccumulatingWorker adds what the particle and fused workers (pbvr_worker.h, fused_worker.h)
-// share: a target of repetitions where accumulation stops, and the latest picture, which callers
-// read or wait for.
+// share: the pipeline's progressive render they draw with, the worker thread's loop (a request
+// begun, then drawn a step at a time), a target of repetitions where accumulation stops, and the
+// latest picture, which callers read or wait for.
 
 #include <apps/viewer/view_method.h>
 #include <pipeline/progressive_render.h>
 
 #include <algorithm>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <mutex>
+#include <new>
 #include <optional>
+#include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 namespace tr::viewer {
 
@@ -111,20 +116,92 @@ class AccumulatingWorker : protected RequestWorker<Request> {
     void set_on_frame(std::function<void()> on_frame) { on_frame_ = std::move(on_frame); }
 
   protected:
-    explicit AccumulatingWorker(int target) : target_(std::clamp(target, 1, kMaxRepetitions)) {}
+    // `opaque`, `options`: the progressive render's (pipeline/progressive_render.h);
+    // `out_of_memory`: the error a request ends with when drawing it runs out of memory.
+    AccumulatingWorker(int target, std::vector<OpaqueSurface> opaque, ProgressiveOptions options,
+                       std::string out_of_memory)
+        : render_(std::move(opaque), std::move(options)),
+          out_of_memory_(std::move(out_of_memory)),
+          target_(std::clamp(target, 1, kMaxRepetitions)) {}
     ~AccumulatingWorker() = default;
+
+    // The request being drawn (worker thread only).
+    struct Job {
+        Request request;
+        std::uint64_t id = 0;
+        bool fresh = false;   // begin() not yet called
+        bool active = false;  // a request has begun
+        std::string error;    // a step failed: nothing more for this request
+    };
+
+    // The worker thread's body: waits for a new request, or for work at the target, then begins
+    // a new request, draws one step of it and publishes the picture; running out of memory ends
+    // the request (its kept particles and shaders dropped). The derived class starts it.
+    void run() {
+        Job job;
+        for (;;) {
+            int target = 0;
+            {
+                std::unique_lock lock(this->mutex_);
+                this->wake_.wait(lock, [&] {
+                    return this->stop_ || this->pending_.has_value() || has_work(job, target_);
+                });
+                if (!this->stop_ && !this->pending_) wait_before_step(lock, job);
+                if (this->stop_) return;
+                if (this->pending_) {
+                    job.request = std::move(this->pending_->first);
+                    job.id = this->pending_->second;
+                    job.fresh = true;
+                    this->pending_.reset();
+                }
+                target = target_;
+            }
+            try {
+                if (job.fresh) {
+                    job.fresh = false;
+                    job.active = true;
+                    job.error.clear();
+                    begin(job.request);
+                }
+                step(job, target);
+            } catch (const std::bad_alloc&) {
+                render_.release_memory();
+                job.error = out_of_memory_;
+            }
+            publish(job);
+        }
+    }
 
     // Whether `frame` has nothing more to draw at `target` repetitions.
     virtual bool finished_at(const Frame& frame, int target) const = 0;
+    // Starts `request`'s picture (render_.begin).
+    virtual void begin(const Request& request) = 0;
+    // Draws one step of the job towards `target` repetitions, into render_ (a failure: job.error).
+    virtual void step(Job& job, int target) = 0;
+    // A frame with the derived class's own fields for the job (its method, mode).
+    virtual Frame frame_of(const Job& job) const = 0;
+    // Under the lock, before a step of a job that has work: may wait (on wake_) for a new request.
+    virtual void wait_before_step(std::unique_lock<std::mutex>& /*lock*/, const Job& /*job*/) {}
 
-    // Publishes `render`'s picture and stats so far as request `id`'s `frame` (its own fields set
-    // by the caller), with `error` (empty: none); wakes those waiting.
-    void publish_frame(const ProgressiveRender& render, std::uint64_t id, std::string error,
-                       Frame frame) {
-        static_cast<ProgressiveStats&>(frame) = render.stats();
-        frame.image = render.picture();
-        frame.request_id = id;
-        frame.error = std::move(error);
+    ProgressiveRender render_;                         // worker thread only
+    std::chrono::steady_clock::time_point published_;  // worker thread only: the last picture
+
+  private:
+    bool has_work(const Job& job, int target) const {
+        if (!job.active || !job.error.empty()) return false;
+        Frame frame = frame_of(job);
+        static_cast<ProgressiveStats&>(frame) = render_.stats();
+        return !finished_at(frame, target);
+    }
+
+    // Publishes render_'s picture and stats so far as the job's frame; wakes those waiting.
+    void publish(const Job& job) {
+        published_ = std::chrono::steady_clock::now();
+        Frame frame = frame_of(job);
+        static_cast<ProgressiveStats&>(frame) = render_.stats();
+        frame.image = render_.picture();
+        frame.request_id = job.id;
+        frame.error = job.error;
         {
             std::lock_guard lock(this->mutex_);
             frame.finished = finished_at(frame, target_);
@@ -134,6 +211,9 @@ class AccumulatingWorker : protected RequestWorker<Request> {
         if (on_frame_) on_frame_();
     }
 
+    const std::string out_of_memory_;
+
+  protected:
     std::function<void()> on_frame_;
     std::optional<Frame> latest_;  // under mutex_
     int target_;                   // under mutex_
