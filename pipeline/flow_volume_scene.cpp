@@ -84,24 +84,22 @@ Result<FlowVolumeSpec> choose_flow_spec(const FlowDomain& domain, FlowVolumeSpec
     const auto say = [&](std::string line) {
         if (notes) notes->push_back(std::move(line));
     };
-    // The seed's point: the fastest but for a thousandth (spikes), or the one nearest the centre
-    // given.
-    std::size_t seed_point = 0;
+    // The seed's speed: at the fastest point but for a thousandth (spikes), chosen as the seed's
+    // centre; or, for dt alone, at the point nearest the centre given.
     double seed_speed = 0;
     if (choose.seed_center) {
         const std::size_t rank = (speeds.size() - 1) * 999 / 1000;
         std::nth_element(speeds.begin(), speeds.begin() + static_cast<std::ptrdiff_t>(rank),
                          speeds.end());
         seed_speed = speeds[rank].first;
-        seed_point = speeds[rank].second;
-        spec.seed_center = inside_at(mesh, seed_point);
+        spec.seed_center = inside_at(mesh, speeds[rank].second);
         say("no --seed-center: the dye is released at " + xyz(spec.seed_center) +
             ", where the flow is fastest (speed " + number(seed_speed) + ")");
-    } else {
+    } else if (choose.dt) {
         double nearest = std::numeric_limits<double>::infinity();
         for (const auto& [m, p] : speeds) {
             const double d = glm::length(mesh.points()[p] - spec.seed_center);
-            if (d < nearest) nearest = d, seed_point = p, seed_speed = m;
+            if (d < nearest) nearest = d, seed_speed = m;
         }
     }
     if (choose.seed_size) {

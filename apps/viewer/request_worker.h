@@ -187,21 +187,24 @@ class AccumulatingWorker : protected RequestWorker<Request> {
     std::chrono::steady_clock::time_point published_;  // worker thread only: the last picture
 
   private:
-    bool has_work(const Job& job, int target) const {
-        if (!job.active || !job.error.empty()) return false;
+    // The job's frame so far, without its picture.
+    Frame frame_so_far(const Job& job) const {
         Frame frame = frame_of(job);
         static_cast<ProgressiveStats&>(frame) = render_.stats();
-        return !finished_at(frame, target);
+        frame.request_id = job.id;
+        frame.error = job.error;
+        return frame;
+    }
+
+    bool has_work(const Job& job, int target) const {
+        return job.active && job.error.empty() && !finished_at(frame_so_far(job), target);
     }
 
     // Publishes render_'s picture and stats so far as the job's frame; wakes those waiting.
     void publish(const Job& job) {
         published_ = std::chrono::steady_clock::now();
-        Frame frame = frame_of(job);
-        static_cast<ProgressiveStats&>(frame) = render_.stats();
+        Frame frame = frame_so_far(job);
         frame.image = render_.picture();
-        frame.request_id = job.id;
-        frame.error = job.error;
         {
             std::lock_guard lock(this->mutex_);
             frame.finished = finished_at(frame, target_);
