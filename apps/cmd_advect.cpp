@@ -129,11 +129,21 @@ int advect_into(const AdvectArgs& args, const AdvectFramesOptions& options,
     volume.time_step = args.time_step;
     auto domain = pipeline.flow_domain(volume);
     if (!domain.ok()) return report_error(domain.error());
+    AdvectFramesOptions chosen = options;
+    if (domain->planar) {
+        // A 2D mesh is the flow: the slice is its plane, the picture upright.
+        std::printf("%s\n", planar_flow_note(*domain->planar).c_str());
+        if (!chosen.slice_point && !chosen.sheet) {
+            chosen.slice_point = domain->planar->point;
+            chosen.slice_normal = domain->planar->normal;
+        }
+        chosen.view_up = upright_view_up(domain->planar->normal);
+    }
     auto velocity = load_velocity(*domain, args.vectors, args.unsteady);
     if (!velocity.ok()) return report_error(velocity.error());
 
     const std::string where = args.sheet.empty() ? args.mesh : args.sheet;
-    const auto report = advect_frames(domain->mesh(), *domain->adjacency, *velocity, options,
+    const auto report = advect_frames(domain->mesh(), *domain->adjacency, *velocity, chosen,
                                       [&](int frame, const Image& picture) -> Status {
                                           return write_png(picture, frame_path(dir, frame));
                                       });
@@ -156,7 +166,10 @@ std::function<int()> add_advect_command(CLI::App& app) {
     auto args = std::make_shared<AdvectArgs>();
     CLI::App* cmd = app.add_subcommand(
         "advect", "Advect a noise texture over a slice of a mesh by its vector field (frames)");
-    cmd->add_option("mesh", args->mesh, "Mesh with a 3-component point array")->required();
+    cmd->add_option("mesh", args->mesh,
+                    "Mesh with a 3-component point array, or a planar 2D mesh (triangles, "
+                    "quads, polygons) with a 2- or 3-component one: the flow on its plane")
+        ->required();
     cmd->add_option("--vectors", args->vectors, "The velocity array")->required();
     cmd->add_option("--slice", args->slice,
                     "Slice plane px,py,pz,nx,ny,nz (default: through the centre, normal along "

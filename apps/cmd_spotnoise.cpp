@@ -22,7 +22,7 @@ namespace {
 struct SpotNoiseArgs {
     std::string mesh;
     std::string scalar;
-    double iso = 0;
+    std::optional<double> iso;
     std::string vectors;
     std::string frames;
     std::string movie;
@@ -45,7 +45,7 @@ int run_spotnoise(const SpotNoiseArgs& args) {
         return kExitUsage;
     }
     options.scalar = args.scalar;
-    options.spots.iso = args.iso;
+    options.spots.iso = args.iso.value_or(0.0);
     options.spots.count = args.count;
     options.spots.dt = args.dt;
     options.spots.band = args.band;
@@ -93,6 +93,14 @@ int run_spotnoise(const SpotNoiseArgs& args) {
     volume.time_step = args.time_step;
     auto domain = pipeline.flow_domain(volume);
     if (!domain.ok()) return report_error(domain.error());
+    if (!domain->planar && (args.scalar.empty() || !args.iso)) {
+        std::fprintf(stderr,
+                     "tetrender: spotnoise needs --scalar and --iso on a 3D mesh (the contour the "
+                     "spots lie near); on a planar 2D mesh they cover the mesh\n");
+        return kExitUsage;
+    }
+    options.planar = domain->planar;
+    if (domain->planar) std::printf("%s\n", planar_flow_note(*domain->planar).c_str());
     auto velocity = load_velocity(*domain, args.vectors, args.unsteady);
     if (!velocity.ok()) return report_error(velocity.error());
 
@@ -105,11 +113,17 @@ int run_spotnoise(const SpotNoiseArgs& args) {
         if (error.where.empty()) error.where = args.mesh;
         return report_error(error);
     }
-    std::printf(
-        "band: %zu tets within %.4g of '%s' = %.6g; %zu spots, mean speed %.4g, dt %.4g%s\n",
-        report->band_tets, report->band, args.scalar.c_str(), args.iso, report->spots,
-        report->mean_speed, report->dt,
-        report->mean_speed > 0 ? "" : " (zero velocity: still frames)");
+    if (domain->planar) {
+        std::printf("sheet: %zu spots, mean speed %.4g, dt %.4g%s\n", report->spots,
+                    report->mean_speed, report->dt,
+                    report->mean_speed > 0 ? "" : " (zero velocity: still frames)");
+    } else {
+        std::printf(
+            "band: %zu tets within %.4g of '%s' = %.6g; %zu spots, mean speed %.4g, dt %.4g%s\n",
+            report->band_tets, report->band, args.scalar.c_str(), *args.iso, report->spots,
+            report->mean_speed, report->dt,
+            report->mean_speed > 0 ? "" : " (zero velocity: still frames)");
+    }
     std::printf("wrote %d frames to %s (advection %.0f ms, raster %.0f ms, %zu reseeded)\n",
                 report->frames, args.frames.c_str(), report->advect_ms, report->raster_ms,
                 report->reseeded);
@@ -128,11 +142,13 @@ std::function<int()> add_spotnoise_command(CLI::App& app) {
     auto args = std::make_shared<SpotNoiseArgs>();
     CLI::App* cmd = app.add_subcommand(
         "spotnoise", "Spot noise near a contour surface, advected by a vector field (frames)");
-    cmd->add_option("mesh", args->mesh, "Mesh with a scalar and a 3-component point array")
+    cmd->add_option("mesh", args->mesh,
+                    "Mesh with a scalar and a 3-component point array, or a planar 2D mesh "
+                    "(triangles, quads, polygons) with a 2- or 3-component one")
         ->required();
-    cmd->add_option("--scalar", args->scalar, "The scalar point array of the contour surface")
-        ->required();
-    cmd->add_option("--iso", args->iso, "The contour value")->required();
+    cmd->add_option("--scalar", args->scalar,
+                    "The scalar point array of the contour surface (3D meshes)");
+    cmd->add_option("--iso", args->iso, "The contour value (3D meshes)");
     cmd->add_option("--vectors", args->vectors, "The velocity array")->required();
     cmd->add_option("--frames", args->frames, "Folder for frame_NNNN.png (created)")->required();
     cmd->add_option("--count", args->count, "Spots (default 20000)")

@@ -52,8 +52,9 @@ Result<AdvectFramesReport> advect_frames(
     report.sheet_triangles = sheets->triangles();
     report.mean_speed = sheets->mean_speed();
     report.dt = sheets->dt();
-    const CameraFrame frame(sheet_camera(sheets->sheet(0), options.width, options.height),
-                            options.width, options.height);
+    const CameraFrame frame(
+        sheet_camera(sheets->sheet(0), options.width, options.height, options.view_up),
+        options.width, options.height);
     Image picture;
     TR_TRY(const FrameLoopTimes times, run_frame_loop(
                                            options.steps, true, [&] { sheets->advance(); },

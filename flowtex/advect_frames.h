@@ -34,6 +34,8 @@ struct AdvectFramesOptions {
     AdvectionMethod method = AdvectionMethod::kBackward;
     int reinject_frames = 40;  // even; 0: off
     int width = 512, height = 512;
+    // The picture's up, made tangent to the sheet (sheet_camera); default the sheet's axis_v.
+    std::optional<Vec3> view_up;
     int texture_size = 256;     // texels a side (power of two)
     int texture_feature = 4;    // the noise's smoothing radius in texels
     double texture_period = 0;  // world units per texture repeat; 0: half the longer side

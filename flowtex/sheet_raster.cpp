@@ -314,16 +314,27 @@ void rasterize_sheet(const CameraFrame& frame, std::span<const TexturedMeshView>
     });
 }
 
-Camera sheet_camera(const Sheet& sheet, int width, int height) {
+Camera sheet_camera(const Sheet& sheet, int width, int height, const std::optional<Vec3>& view_up) {
+    if (!view_up) {
+        return plane_camera(sheet.points, sheet.origin, sheet.axis_u, sheet.axis_v, sheet.normal,
+                            width, height);
+    }
+    const Vec3 up = glm::normalize(*view_up - glm::dot(*view_up, sheet.normal) * sheet.normal);
+    return plane_camera(sheet.points, sheet.origin, glm::cross(up, sheet.normal), up, sheet.normal,
+                        width, height);
+}
+
+Camera plane_camera(std::span<const Vec3> points, const Vec3& origin, const Vec3& right,
+                    const Vec3& up, const Vec3& normal, int width, int height) {
     glm::dvec2 lo(1e300), hi(-1e300);
-    for (const Vec3& p : sheet.points) {
-        const glm::dvec2 st = sheet.plane_coordinates(p);
+    for (const Vec3& p : points) {
+        const glm::dvec2 st(glm::dot(p - origin, right), glm::dot(p - origin, up));
         lo = glm::min(lo, st);
         hi = glm::max(hi, st);
     }
-    if (sheet.points.empty()) lo = hi = glm::dvec2(0.0);
+    if (points.empty()) lo = hi = glm::dvec2(0.0);
     const glm::dvec2 centre = 0.5 * (lo + hi);
-    const Vec3 focal = sheet.origin + centre.x * sheet.axis_u + centre.y * sheet.axis_v;
+    const Vec3 focal = origin + centre.x * right + centre.y * up;
     const double half_w = 0.5 * (hi.x - lo.x), half_h = 0.5 * (hi.y - lo.y);
     const double aspect = static_cast<double>(width) / height;
     Camera camera;
@@ -331,9 +342,15 @@ Camera sheet_camera(const Sheet& sheet, int width, int height) {
     camera.parallel_scale = 1.02 * std::max({half_h, half_w / aspect, 1e-12});
     const double distance = std::max(1.0, 4.0 * std::max(half_w, half_h));
     camera.focal_point = focal;
-    camera.position = focal + distance * sheet.normal;
-    camera.view_up = sheet.axis_v;
+    camera.position = focal + distance * normal;
+    camera.view_up = up;
     return camera;
+}
+
+Vec3 upright_view_up(const Vec3& normal) {
+    const Vec3 a = glm::abs(normal);
+    const Vec3 up = a.z >= a.x && a.z >= a.y ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+    return glm::normalize(up - glm::dot(up, normal) * normal);
 }
 
 }  // namespace tr

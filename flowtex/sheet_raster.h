@@ -7,6 +7,7 @@
 #include <flowtex/advection.h>
 #include <flowtex/periodic_texture.h>
 
+#include <optional>
 #include <span>
 
 namespace tr {
@@ -40,8 +41,19 @@ std::vector<float> rasterize_sheet_values(const CameraFrame& frame,
                                           std::span<const TexturedMeshView> layers,
                                           const PeriodicTexture& texture);
 
-// An orthographic camera looking at the sheet's kept points along -normal (view up axis_v),
-// framing them with a 2% margin at the aspect width / height.
-Camera sheet_camera(const Sheet& sheet, int width, int height);
+// An orthographic camera looking at the sheet's kept points along -normal, framing them with a
+// 2% margin at the aspect width / height; view up axis_v, or `view_up` made tangent to the
+// sheet (precondition: not along its normal).
+Camera sheet_camera(const Sheet& sheet, int width, int height,
+                    const std::optional<Vec3>& view_up = std::nullopt);
+
+// The same over `points` for the plane through `origin` with unit `normal`, the picture's
+// right and up the orthonormal in-plane `right` and `up` (right x up = normal).
+Camera plane_camera(std::span<const Vec3> points, const Vec3& origin, const Vec3& right,
+                    const Vec3& up, const Vec3& normal, int width, int height);
+
+// An upright view of a plane with unit `normal`: +y up for a plane facing mostly along z (a 2D
+// mesh in z = c shows x to the right, y up), +z otherwise; returned tangent to the plane.
+Vec3 upright_view_up(const Vec3& normal);
 
 }  // namespace tr

@@ -1,6 +1,7 @@
 #include <core/stopwatch.h>
 #include <flowtex/flow.h>
 #include <flowtex/frame_loop.h>
+#include <flowtex/sheet_raster.h>
 #include <flowtex/spot_noise_frames.h>
 
 #include <chrono>
@@ -31,7 +32,20 @@ Result<std::unique_ptr<SpotNoiseRun>> start_spot_noise(const TetMesh& mesh,
                        "spot noise needs steps >= 0, a positive size, band >= 0 and dt >= 0"),
             "band");
     }
-    const Field* scalar = find_field(mesh.point_fields(), options.scalar);
+    auto run = std::make_unique<SpotNoiseRun>();
+    SpotNoiseOptions spot_options = options.spots;
+    if (options.planar) {
+        std::vector<float> height(mesh.num_points());
+        for (std::size_t i = 0; i < height.size(); ++i) {
+            height[i] = static_cast<float>(
+                glm::dot(mesh.points()[i] - options.planar->point, options.planar->normal));
+        }
+        run->height = make_float_field("height above the sheet", 1, std::move(height));
+        spot_options.iso = 0;
+        if (spot_options.band == 0) spot_options.band = 0.5 * options.planar->thickness;
+    }
+    const Field* scalar =
+        run->height ? &*run->height : find_field(mesh.point_fields(), options.scalar);
     if (!scalar) {
         return with_about(
             make_error(ErrorCode::kNotFound, "no point array '" + options.scalar +
@@ -46,7 +60,6 @@ Result<std::unique_ptr<SpotNoiseRun>> start_spot_noise(const TetMesh& mesh,
             "scalar");
     }
     const double diagonal = glm::length(mesh.bounds().size());
-    SpotNoiseOptions spot_options = options.spots;
     if (spot_options.band == 0) spot_options.band = diagonal / 100.0;
     const bool auto_dt = spot_options.dt == 0;
     if (auto_dt) spot_options.dt = 1.0;
@@ -56,7 +69,6 @@ Result<std::unique_ptr<SpotNoiseRun>> start_spot_noise(const TetMesh& mesh,
         return with_about(make_error(ErrorCode::kInvalidArgument, "the start time must be finite"),
                           "start_time");
     }
-    auto run = std::make_unique<SpotNoiseRun>();
     run->flow = std::make_unique<MeshFlow>(mesh, adjacency, velocity);
     const MeshFlow& flow = *run->flow;
     TR_TRY(SpotNoise created, SpotNoise::create(mesh, flow.locator(), *scalar, flow, spot_options));
@@ -96,6 +108,11 @@ Result<SpotNoiseFramesReport> spot_noise_frames(
     Camera camera;
     if (options.camera) {
         camera = *options.camera;
+    } else if (options.planar) {
+        const Vec3& normal = options.planar->normal;
+        const Vec3 up = upright_view_up(normal);
+        camera = plane_camera(spots.positions(), options.planar->point, glm::cross(up, normal), up,
+                              normal, options.width, options.height);
     } else {
         Bounds3 box{Vec3(1e300), Vec3(-1e300)};
         for (const Vec3& p : spots.positions()) {

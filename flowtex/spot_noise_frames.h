@@ -10,6 +10,7 @@
 #include <flowtex/spot_raster.h>
 #include <flowvol/velocity_field.h>
 #include <mesh/face_adjacency.h>
+#include <mesh/planar_slab.h>
 #include <mesh/tet_mesh.h>
 #include <project/opaque_geometry.h>
 
@@ -22,7 +23,11 @@
 namespace tr {
 
 struct SpotNoiseFramesOptions {
-    std::string scalar;  // a 1-component point array of the mesh
+    std::string scalar;  // a 1-component point array of the mesh (ignored with `planar`)
+    // The mesh is a planar 2D mesh's slab (mesh/planar_slab.h): the spots lie on the whole
+    // sheet (their scalar the height above its plane, iso 0, band half the slab's thickness
+    // unless given), and the default camera looks at the plane, upright (upright_view_up).
+    std::optional<PlanarSheet> planar;
     // iso, count, seed, lifetime as given; band 0: the mesh bounds' diagonal / 100; dt 0: the
     // mean speed over the spots at frame 0 carries a spot 1/400 of the diagonal per frame, or,
     // for an unsteady velocity, the frames span its times from the start to the last sample.
@@ -56,6 +61,7 @@ struct SpotNoiseFramesReport {
 // option ("scalar", "count", "band", "iso", "start_time").
 struct SpotNoiseRun {
     std::unique_ptr<MeshFlow> flow;  // the spots keep a reference
+    std::optional<Field> height;     // a planar slab's height above its plane (the spots' scalar)
     std::optional<SpotNoise> spots;
     SpotNoiseFramesReport report;
 };

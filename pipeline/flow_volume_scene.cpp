@@ -10,6 +10,17 @@
 
 namespace tr {
 
+std::string planar_flow_note(const PlanarSheet& sheet) {
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "2D mesh: the flow on its plane through (%.4g, %.4g, %.4g), normal (%.3g, "
+                  "%.3g, %.3g); cells split into triangles, the velocity linear on each and "
+                  "tangent to the plane",
+                  sheet.point.x, sheet.point.y, sheet.point.z, sheet.normal.x, sheet.normal.y,
+                  sheet.normal.z);
+    return line;
+}
+
 std::vector<std::string> vector_arrays(const TetMesh& mesh) {
     std::vector<std::string> names;
     for (const Field& f : mesh.point_fields()) {
@@ -228,6 +239,7 @@ Result<VelocityField> load_velocity(const FlowDomain& domain, const std::string&
         }
         LoadOptions options = load;
         options.time_step = static_cast<int>(k);
+        options.planar_as_slab = domain.planar.has_value();
         TR_TRY(const LoadedMesh step, load_tet_mesh(domain.path, options));
         if (step.tets.num_points() != mesh.num_points() ||
             step.tets.num_tets() != mesh.num_tets()) {

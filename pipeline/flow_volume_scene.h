@@ -26,9 +26,16 @@ struct FlowDomain {
     std::shared_ptr<const LoadedMesh> loaded;
     std::shared_ptr<const FaceAdjacency> adjacency;  // of loaded->tets
     std::vector<std::string> vector_arrays;          // its 3-component point arrays
+    // Set when the file is a planar 2D mesh taken as its slab (mesh/planar_slab.h): the plane
+    // a flow over it is drawn on.
+    std::optional<PlanarSheet> planar;
 
     const TetMesh& mesh() const { return loaded->tets; }
 };
+
+// What a flow over a planar 2D mesh's slab is, in one line for the user: the plane, its cells
+// split into triangles with the velocity linear on each and made tangent to the plane.
+std::string planar_flow_note(const PlanarSheet& sheet);
 
 // The 3-component point arrays of `mesh`.
 std::vector<std::string> vector_arrays(const TetMesh& mesh);

@@ -59,6 +59,14 @@ double tetrahedralize_bytes(const UnstructuredMesh& input) {
 Result<LoadedMesh> load_tet_mesh(UnstructuredMesh input, const std::string& name,
                                  const LoadOptions& options) {
     LoadedMesh loaded;
+    if (options.planar_as_slab && is_surface_mesh(input)) {
+        auto sheet = planar_sheet(input);
+        if (!sheet.ok()) return with_where(sheet.error(), name);
+        auto slab = planar_slab(input, *sheet);
+        if (!slab.ok()) return with_where(slab.error(), name);
+        loaded.planar = *sheet;
+        input = std::move(slab).value();
+    }
     loaded.input = std::move(input);
     const auto start = std::chrono::steady_clock::now();
     if (loaded.input.is_point_cloud() || options.delaunay) {

@@ -5,11 +5,13 @@
 
 #include <core/progress.h>
 #include <core/result.h>
+#include <mesh/planar_slab.h>
 #include <mesh/tet_mesh.h>
 #include <mesh/tetrahedralize.h>
 #include <mesh/unstructured_mesh.h>
 
 #include <filesystem>
+#include <optional>
 
 namespace tr {
 
@@ -20,7 +22,10 @@ struct LoadOptions {
     bool no_merge = false;
     bool delaunay = false;         // Delaunay of the points even when the file has cells
     bool whole_exodus_set = true;  // io/read_mesh.h ReadOptions::whole_exodus_set
-    ProgressFn progress;           // stages "reading", "tetrahedralizing"
+    // A planar 2D mesh (triangles, quads, polygons) becomes a thin slab of wedges
+    // (mesh/planar_slab.h) instead of an error: what the flow tools take a 2D flow from.
+    bool planar_as_slab = false;
+    ProgressFn progress;  // stages "reading", "tetrahedralizing"
 };
 
 struct LoadedMesh {
@@ -28,6 +33,9 @@ struct LoadedMesh {
     TetMesh tets;
     TetrahedralizeReport report;
     bool used_delaunay = false;
+    // Set when a planar 2D mesh was made a slab (LoadOptions::planar_as_slab): its plane, its
+    // thickness; `input` is then the slab.
+    std::optional<PlanarSheet> planar;
     double read_ms = 0;
     double tetrahedralize_ms = 0;
 };
@@ -36,7 +44,8 @@ struct LoadedMesh {
 // read_mesh and tetrahedralize, with the path in `where`; kInvalidMesh when no tetrahedron of
 // non-zero volume is left (coplanar cells, all points coincident, coordinates whose volumes
 // overflow), saying how many cells or points gave nothing; kUnsupported for a point cloud in a
-// build without CGAL, or for any file in a build without VTK. Cost: the reader's and the
+// build without CGAL, or for any file in a build without VTK; with planar_as_slab, a 2D mesh
+// that is not planar (planar_sheet's errors). Cost: the reader's and the
 // split's, O(file size + cells log cells).
 Result<LoadedMesh> load_tet_mesh(const std::filesystem::path& path, const LoadOptions& options);
 

@@ -87,6 +87,7 @@ Pipeline& Pipeline::operator=(Pipeline&&) noexcept = default;
 void Pipeline::clear() {
     meshes_.clear();
     sorted_.clear();
+    slabs_.clear();
     shaders_.clear();
 }
 
@@ -295,6 +296,35 @@ Result<std::vector<float>> Pipeline::scalar(const SceneVolume& volume, const Tet
 }
 
 Result<FlowDomain> Pipeline::flow_domain(const SceneVolume& volume) {
+    const std::string key = mesh_key(volume);
+    if (!volume.tets && !meshes_.contains(key) && !slabs_.contains(key)) {
+        // Loaded once as a flow would take it: a planar 2D mesh as a slab, kept apart; any
+        // other mesh as mesh() loads it, cached as mesh() caches it.
+        LoadOptions load = options_.load;
+        load.time_step = volume.time_step;
+        load.planar_as_slab = true;
+        auto loaded = volume.data ? load_tet_mesh(*volume.data, volume.mesh.string(), load)
+                                  : load_tet_mesh(volume.mesh, load);
+        if (!loaded.ok()) return loaded.error();
+        auto shared = std::make_shared<const LoadedMesh>(std::move(loaded).value());
+        if (shared->planar) {
+            auto adjacency = build_face_adjacency(shared->tets);
+            if (!adjacency.ok()) return with_where(adjacency.error(), volume.mesh.string());
+            slabs_[key] = {shared,
+                           std::make_shared<const FaceAdjacency>(std::move(adjacency).value())};
+        } else {
+            meshes_[key] = shared;
+        }
+    }
+    if (auto it = slabs_.find(key); it != slabs_.end()) {
+        FlowDomain domain;
+        domain.path = volume.data ? std::string() : volume.mesh.string();
+        domain.loaded = it->second.loaded;
+        domain.adjacency = it->second.adjacency;
+        domain.vector_arrays = vector_arrays(domain.loaded->tets);
+        domain.planar = domain.loaded->planar;
+        return domain;
+    }
     TR_TRY(std::shared_ptr<const SortedMesh> bare, sorted_mesh(volume, false));
     TR_TRY(std::shared_ptr<const LoadedMesh> loaded, mesh(volume));
     FlowDomain domain;

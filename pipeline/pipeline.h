@@ -134,7 +134,9 @@ class Pipeline {
     // the point).
     Result<std::vector<float>> scalar(const SceneVolume& volume, const TetMesh& on);
 
-    // The domain a flow volume of `volume` grows through (the mesh as loaded, never convexified).
+    // The domain a flow (flow volume, texture advection, spot noise) of `volume` takes: the mesh
+    // as loaded, never convexified; a planar 2D mesh as its slab (mesh/planar_slab.h, with
+    // FlowDomain::planar set), which no other use of the volume sees.
     Result<FlowDomain> flow_domain(const SceneVolume& volume);
 
     // The scene's opaque surfaces: files read, side sets and boundaries of its volumes. Errors:
@@ -164,6 +166,12 @@ class Pipeline {
     PipelineOptions options_;
     std::map<std::string, std::shared_ptr<const LoadedMesh>> meshes_;
     std::map<std::string, std::shared_ptr<const SortedMesh>> sorted_;
+    // Planar 2D meshes loaded as slabs for flow_domain, and their adjacency.
+    struct SlabDomain {
+        std::shared_ptr<const LoadedMesh> loaded;
+        std::shared_ptr<const FaceAdjacency> adjacency;
+    };
+    std::map<std::string, SlabDomain> slabs_;
     VisibilitySorter sorter_;
     static constexpr std::size_t kMaxShaders = 2 * kMaxVolumes;
     struct CachedShader;  // a shader with a copy of its transfer function

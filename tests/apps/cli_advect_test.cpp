@@ -163,6 +163,98 @@ TEST(CliAdvect, ASheetOfQuadsFromAFile) {
     EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
 }
 
+// A .pvd of two steps (below).
+std::string series_file(const std::string& dir, const std::string& name, const std::string& first,
+                        const std::string& second);
+
+// A legacy ASCII 2D mesh: 6 x 6 quads over [0, 3]^2 at z = 0 (z = bump x y at its points
+// otherwise) with a 2-component point array "v" = (1, 0.5).
+std::string quads_2d(const std::string& dir, double bump = 0.0,
+                     const std::string& velocity = "1 0.5", const std::string& name = "") {
+    const int n = 7;
+    std::string s = "# vtk DataFile Version 4.2\n2D flow\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+    s += "POINTS " + std::to_string(n * n) + " double\n";
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+            s += std::to_string(0.5 * i) + " " + std::to_string(0.5 * j) + " " +
+                 std::to_string(bump * i * j) + "\n";
+    const int cells = (n - 1) * (n - 1);
+    s += "CELLS " + std::to_string(cells) + " " + std::to_string(cells * 5) + "\n";
+    for (int j = 0; j + 1 < n; ++j)
+        for (int i = 0; i + 1 < n; ++i)
+            s += "4 " + std::to_string(j * n + i) + " " + std::to_string(j * n + i + 1) + " " +
+                 std::to_string((j + 1) * n + i + 1) + " " + std::to_string((j + 1) * n + i) + "\n";
+    s += "CELL_TYPES " + std::to_string(cells) + "\n";
+    for (int c = 0; c < cells; ++c) s += "9\n";
+    s += "POINT_DATA " + std::to_string(n * n) + "\nSCALARS v double 2\nLOOKUP_TABLE default\n";
+    for (int p = 0; p < n * n; ++p) s += velocity + "\n";
+    const std::string path = dir + "/" +
+                             (!name.empty() ? name
+                              : bump == 0   ? "quads_2d.vtk"
+                                            : "curved_2d.vtk");
+    std::ofstream(path) << s;
+    return path;
+}
+
+TEST(CliFlow2D, AdvectAndSpotNoiseTakeAQuadMeshAsTheFlow) {
+    const TempDir temp;
+    const std::string dir = temp.string();
+    const std::string mesh = shell_quote(quads_2d(dir));
+    const auto advect = run_cli("advect " + mesh + " --vectors v --steps 3 --size 48x48 --frames " +
+                                shell_quote(dir + "/advect"));
+    ASSERT_EQ(advect.exit_code, 0) << advect.err;
+    EXPECT_NE(advect.out.find("2D mesh: the flow on its plane through (1.5, 1.5, 0), normal (0, "
+                              "0, 1)"),
+              std::string::npos)
+        << advect.out;
+    EXPECT_EQ(count_files(dir + "/advect"), 4);
+    EXPECT_TRUE(bytes(dir + "/advect/frame_0000.png") != bytes(dir + "/advect/frame_0003.png"));
+    // Spot noise needs no contour on a 2D mesh: the spots cover it.
+    const auto spots = run_cli("spotnoise " + mesh + " --vectors v --steps 3 --count 400 --size " +
+                               "48x48 --frames " + shell_quote(dir + "/spots"));
+    ASSERT_EQ(spots.exit_code, 0) << spots.err;
+    EXPECT_NE(spots.out.find("sheet: 400 spots, mean speed 1.118"), std::string::npos) << spots.out;
+    EXPECT_EQ(count_files(dir + "/spots"), 4);
+    EXPECT_TRUE(bytes(dir + "/spots/frame_0000.png") != bytes(dir + "/spots/frame_0003.png"));
+}
+
+TEST(CliFlow2D, AnUnsteadySeriesOfQuadMeshes) {
+    // Two steps, the flow turning from +x to +y: both tools read every step as a slab.
+    const TempDir temp;
+    const std::string dir = temp.string();
+    quads_2d(dir, 0.0, "1 0", "step0.vtk");
+    quads_2d(dir, 0.0, "0 1", "step1.vtk");
+    const std::string series =
+        shell_quote(series_file(dir, "turning.pvd", "step0.vtk", "step1.vtk"));
+    const auto advect = run_cli("advect " + series + " --vectors v --unsteady --steps 4 --size " +
+                                "32x32 --frames " + shell_quote(dir + "/advect"));
+    ASSERT_EQ(advect.exit_code, 0) << advect.err;
+    EXPECT_NE(advect.out.find("dt 0.25"), std::string::npos) << advect.out;  // 1 time unit / 4
+    EXPECT_EQ(count_files(dir + "/advect"), 5);
+    const auto spots = run_cli("spotnoise " + series + " --vectors v --unsteady --steps 4 " +
+                               "--count 300 --size 32x32 --frames " + shell_quote(dir + "/spots"));
+    ASSERT_EQ(spots.exit_code, 0) << spots.err;
+    EXPECT_EQ(count_files(dir + "/spots"), 5);
+}
+
+TEST(CliFlow2DBadInput, ACurvedSurfaceAndAMissingContourAreOneLineErrors) {
+    const TempDir temp;
+    const std::string dir = temp.string();
+    const auto curved = run_cli("advect " + shell_quote(quads_2d(dir, 0.05)) +
+                                " --vectors v --steps 1 --frames " + shell_quote(dir + "/c"));
+    EXPECT_EQ(curved.exit_code, 1);
+    EXPECT_NE(curved.err.find("not planar"), std::string::npos) << curved.err;
+    EXPECT_EQ(std::count(curved.err.begin(), curved.err.end(), '\n'), 1) << curved.err;
+    EXPECT_EQ(count_files(dir + "/c"), 0);
+    // On a 3D mesh spot noise still needs its contour.
+    const auto no_contour = run_cli("spotnoise " + shell_quote(grid_file(dir, true)) +
+                                    " --vectors v --steps 1 --frames " + shell_quote(dir + "/s"));
+    EXPECT_EQ(no_contour.exit_code, 2);
+    EXPECT_NE(no_contour.err.find("needs --scalar and --iso on a 3D mesh"), std::string::npos)
+        << no_contour.err;
+    EXPECT_EQ(count_files(dir + "/s"), 0);
+}
+
 // A .pvd of two steps at t = 0 and 1, `first` and `second` (files in `dir`).
 std::string series_file(const std::string& dir, const std::string& name, const std::string& first,
                         const std::string& second) {
