@@ -130,15 +130,8 @@ int advect_into(const AdvectArgs& args, const AdvectFramesOptions& options,
     auto domain = pipeline.flow_domain(volume);
     if (!domain.ok()) return report_error(domain.error());
     AdvectFramesOptions chosen = options;
-    if (domain->planar) {
-        // A 2D mesh is the flow: the slice is its plane, the picture upright.
-        std::printf("%s\n", planar_flow_note(*domain->planar).c_str());
-        if (!chosen.slice_point && !chosen.sheet) {
-            chosen.slice_point = domain->planar->point;
-            chosen.slice_normal = domain->planar->normal;
-        }
-        chosen.view_up = upright_view_up(domain->planar->normal);
-    }
+    chosen.planar = domain->planar;  // a 2D mesh is the flow: its plane is the slice
+    if (domain->planar) std::printf("%s\n", planar_flow_note(*domain->planar).c_str());
     auto velocity = load_velocity(*domain, args.vectors, args.unsteady);
     if (!velocity.ok()) return report_error(velocity.error());
 

@@ -14,7 +14,9 @@ namespace {
 AdvectedSheetsOptions advected_sheets_options(const AdvectFramesOptions& options,
                                               const Bounds3& bounds) {
     AdvectedSheetsOptions out;
-    if (options.slice_point || options.slice_normal) {
+    if (options.planar && !options.slice_point && !options.slice_normal && !options.sheet) {
+        out.slices.push_back({options.planar->point, options.planar->normal});
+    } else if (options.slice_point || options.slice_normal) {
         const SlicePlane fallback = default_slice(bounds);
         out.slices.push_back({options.slice_point.value_or(fallback.point),
                               options.slice_normal.value_or(fallback.normal)});
@@ -47,14 +49,16 @@ Result<AdvectFramesReport> advect_frames(
     TR_TRY(const std::unique_ptr<AdvectedSheets> sheets,
            AdvectedSheets::create(mesh, adjacency, velocity,
                                   advected_sheets_options(options, mesh.bounds())));
+    const std::optional<Vec3> view_up = options.view_up || !options.planar
+                                            ? options.view_up
+                                            : upright_view_up(options.planar->normal);
     AdvectFramesReport report;
     report.sheet_points = sheets->points();
     report.sheet_triangles = sheets->triangles();
     report.mean_speed = sheets->mean_speed();
     report.dt = sheets->dt();
-    const CameraFrame frame(
-        sheet_camera(sheets->sheet(0), options.width, options.height, options.view_up),
-        options.width, options.height);
+    const CameraFrame frame(sheet_camera(sheets->sheet(0), options.width, options.height, view_up),
+                            options.width, options.height);
     Image picture;
     TR_TRY(const FrameLoopTimes times, run_frame_loop(
                                            options.steps, true, [&] { sheets->advance(); },

@@ -8,6 +8,7 @@
 #include <flowtex/sheet_raster.h>
 #include <flowvol/velocity_field.h>
 #include <mesh/face_adjacency.h>
+#include <mesh/planar_slab.h>
 #include <mesh/surface_mesh.h>
 #include <mesh/tet_mesh.h>
 
@@ -34,8 +35,12 @@ struct AdvectFramesOptions {
     AdvectionMethod method = AdvectionMethod::kBackward;
     int reinject_frames = 40;  // even; 0: off
     int width = 512, height = 512;
-    // The picture's up, made tangent to the sheet (sheet_camera); default the sheet's axis_v.
+    // The picture's up, made tangent to the sheet (sheet_camera); default the sheet's axis_v,
+    // or upright (upright_view_up) with `planar`.
     std::optional<Vec3> view_up;
+    // The mesh is a planar 2D mesh's slab (mesh/planar_slab.h, FlowDomain::planar): the slice
+    // defaults to its plane (unless a slice or sheet is given) and the picture is upright.
+    std::optional<PlanarSheet> planar;
     int texture_size = 256;     // texels a side (power of two)
     int texture_feature = 4;    // the noise's smoothing radius in texels
     double texture_period = 0;  // world units per texture repeat; 0: half the longer side

@@ -43,7 +43,8 @@ Status check_layers_memory(const Scene& scene, std::size_t surfaces) {
 Result<LayeredVolume> LayeredVolume::create(Pipeline& pipeline, const Scene& scene,
                                             const RenderOptions& options,
                                             std::span<const std::vector<double>> depths,
-                                            NamedStats& stats, std::vector<std::string>& notes) {
+                                            NamedStats& stats, std::vector<std::string>& notes,
+                                            bool volume_drawn) {
     LayeredVolume out;
     out.width_ = scene.width;
     out.height_ = scene.height;
@@ -60,13 +61,20 @@ Result<LayeredVolume> LayeredVolume::create(Pipeline& pipeline, const Scene& sce
     RenderOptions plain = options;
     plain.on_frame = nullptr;
     plain.on_flow_volume_layer = nullptr;
-    TR_TRY(RenderResult full, pipeline.render(volume, plain));
-    out.full_ = std::move(full.image);
-    for (std::string& note : full.notes) {
-        // The volume alone may well be clear: the sheets or spots are the picture.
-        if (note.rfind("the picture is empty", 0) != 0) notes.push_back(std::move(note));
+    int renders = 0;
+    if (volume_drawn) {
+        TR_TRY(RenderResult full, pipeline.render(volume, plain));
+        out.full_ = std::move(full.image);
+        for (std::string& note : full.notes) {
+            // The volume alone may well be clear: the sheets or spots are the picture.
+            if (note.rfind("the picture is empty", 0) != 0) notes.push_back(std::move(note));
+        }
+        renders = 1;
+    } else {
+        out.full_ = out.opaque_.color.pixels.empty()
+                        ? Image(scene.width, scene.height, Vec3f(scene.background))
+                        : out.opaque_.color;
     }
-    int renders = 1;
 
     // Each pixel's fragments in front of the opaque geometry, nearest first (ties: the earlier
     // surface).
@@ -104,6 +112,12 @@ Result<LayeredVolume> LayeredVolume::create(Pipeline& pipeline, const Scene& sce
                 stop.depth[p] = depths[rank[p]][p];
             }
         }
+        out.rank_.push_back(std::move(rank));
+        if (!volume_drawn) {  // nothing in front: no light, full transmittance
+            out.front_.emplace_back(scene.width, scene.height, Vec3f(0.0f));
+            out.transmittance_.emplace_back(scene.width, scene.height, Vec3f(1.0f));
+            continue;
+        }
         stop.color = Image(scene.width, scene.height, Vec3f(0.0f));
         TR_TRY(RenderResult black, render_projected_volume(pipeline, under, plain, &stop));
         stop.color = Image(scene.width, scene.height, Vec3f(1.0f));
@@ -113,7 +127,6 @@ Result<LayeredVolume> LayeredVolume::create(Pipeline& pipeline, const Scene& sce
         for (std::size_t p = 0; p < num_pixels; ++p) {
             transmittance.pixels[p] -= black.image.pixels[p];
         }
-        out.rank_.push_back(std::move(rank));
         out.front_.push_back(std::move(black.image));
         out.transmittance_.push_back(std::move(transmittance));
     }

@@ -46,10 +46,14 @@ class LayeredVolume {
     // the eye). Errors: the pipeline's; layers whose pictures would not fit the memory budget
     // (core/memory_budget.h, 34 bytes a pixel and surface). Stats: volume_renders, volume_ms,
     // layers (K).
+    // With `volume_drawn` false (a 2D flow's scene: its mesh has no volume) nothing is rendered
+    // and the surfaces lie over the opaque geometry and background alone (F_k = 0, T_k = 1,
+    // R = the opaque layer): volume_renders 0.
     static Result<LayeredVolume> create(Pipeline& pipeline, const Scene& scene,
                                         const RenderOptions& options,
                                         std::span<const std::vector<double>> depths,
-                                        NamedStats& stats, std::vector<std::string>& notes);
+                                        NamedStats& stats, std::vector<std::string>& notes,
+                                        bool volume_drawn = true);
 
     // The picture with surface s drawn as `surfaces[s]` (same count and order as the depths).
     // Bit-identical whatever the thread count.

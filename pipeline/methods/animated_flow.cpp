@@ -90,6 +90,10 @@ Result<SceneFlow> scene_flow(Pipeline& pipeline, const Scene& scene) {
     return SceneFlow{std::move(domain), std::move(velocity).value()};
 }
 
+std::string planar_scene_note(const PlanarSheet& sheet) {
+    return planar_flow_note(sheet) + "; the scene's volume is not drawn (a 2D mesh has none)";
+}
+
 int steps_of(const Scene& scene) { return static_cast<int>(integer_key(scene, "steps", 100)); }
 
 int last_frame(const Scene& scene, const RenderOptions& options) {

@@ -34,6 +34,10 @@ struct SceneFlow {
 };
 Result<SceneFlow> scene_flow(Pipeline& pipeline, const Scene& scene);
 
+// The note of a scene whose mesh is a planar 2D mesh (SceneFlow::domain.planar): what the flow
+// is (planar_flow_note) and that the scene's volume is not drawn.
+std::string planar_scene_note(const PlanarSheet& sheet);
+
 // The key `steps`: frames after frame 0 (default 100, as steps_key() says).
 int steps_of(const Scene& scene);
 

@@ -25,8 +25,9 @@ const MethodKeys kSpotNoiseKeys{
               .expected = "the name of a 1-component point array"},
              {.key = "iso",
               .type = KeyType::kNumber,
-              .doc = "the contour `scalar` = `iso`, inside the scalar's range",
-              .required = true},
+              .default_value = "required on a 3D mesh",
+              .doc = "the contour `scalar` = `iso`, inside the scalar's range (a planar 2D "
+                     "mesh needs none: the spots cover it)"},
              {.key = "band",
               .type = KeyType::kNumber,
               .default_value = "diagonal / 100",
@@ -96,6 +97,12 @@ class SpotNoiseMethod final : public RenderMethod {
         SpotNoiseFramesOptions spot_options;
         spot_options.scalar = string_key(scene, "scalar", scene.volumes[0].scalar);
         spot_options.spots.iso = number_key(scene, "iso", 0.0);
+        spot_options.planar = flow.domain.planar;
+        if (!flow.domain.planar && !option(scene, "iso")) {
+            return method_option_error(scene, "iso",
+                                       "missing: spot noise on a 3D mesh follows the contour "
+                                       "`scalar` = `iso`");
+        }
         spot_options.spots.band = number_key(scene, "band", 0.0);
         spot_options.spots.count = static_cast<std::size_t>(integer_key(scene, "count", 20000));
         spot_options.spots.dt = number_key(scene, "dt", 0.0);
@@ -146,9 +153,11 @@ class SpotNoiseMethod final : public RenderMethod {
             // The spots move: the volume is split at their new depths every frame.
             NamedStats volume_stats;
             std::vector<std::string> volume_notes;
+            const bool volume_drawn = !flow.domain.planar;
+            if (!volume_drawn) volume_notes.push_back(planar_scene_note(*flow.domain.planar));
             TR_TRY(const LayeredVolume volume,
                    LayeredVolume::create(pipeline, scene, options, depths, volume_stats,
-                                         volume_notes));
+                                         volume_notes, volume_drawn));
             result.image = volume.composite(fragments);
             if (k == last) {
                 for (const auto& [key, value] : volume_stats.entries()) stats.set_value(key, value);

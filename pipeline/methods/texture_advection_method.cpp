@@ -119,6 +119,8 @@ class TextureAdvectionMethod final : public RenderMethod {
             for (const std::vector<double>& s : *std::get_if<NumberLists>(o)) {
                 sheet_options.slices.push_back({Vec3(s[0], s[1], s[2]), Vec3(s[3], s[4], s[5])});
             }
+        } else if (flow.domain.planar) {  // a 2D flow: the sheet is its plane
+            sheet_options.slices.push_back({flow.domain.planar->point, flow.domain.planar->normal});
         }
         TR_TRY_STATUS(
             check_layers_memory(scene, std::max<std::size_t>(1, sheet_options.slices.size())));
@@ -147,8 +149,11 @@ class TextureAdvectionMethod final : public RenderMethod {
             const Sheet& sheet = sheets->sheet(s);
             depths.push_back(plane_depths(frame, sheet.origin, sheet.normal));
         }
+        const bool volume_drawn = !flow.domain.planar;
+        if (!volume_drawn) result.notes.push_back(planar_scene_note(*flow.domain.planar));
         TR_TRY(const LayeredVolume volume,
-               LayeredVolume::create(pipeline, scene, options, depths, stats, result.notes));
+               LayeredVolume::create(pipeline, scene, options, depths, stats, result.notes,
+                                     volume_drawn));
 
         const float opacity = static_cast<float>(number_key(scene, "sheet_opacity", 0.6));
         const int last = last_frame(scene, options);

@@ -306,8 +306,16 @@ void bind_mesh_handles(py::module_& m) {
 void bind_flow_textures(py::module_& m) {
     // Spot noise and texture advection (flowtex/): the frames of an in-memory tet mesh's
     // steady flow, as `tetrender spotnoise` and `tetrender advect` write them.
-    const auto flow_frames = [](const TetHandle& mesh, const std::string& name,
+    // `mesh`: a TetHandle, or a MeshHandle of a planar 2D mesh (the flow on its plane).
+    const auto flow_frames = [](const py::object& mesh, const std::string& name,
                                 const std::string& vectors, bool as_float, const auto& run) {
+        tr::SceneVolume volume;
+        volume.mesh = name;
+        if (py::isinstance<MeshHandle>(mesh)) {
+            volume.data = mesh.cast<const MeshHandle&>().mesh;
+        } else {
+            volume.tets = mesh.cast<const TetHandle&>().mesh;
+        }
         std::vector<tr::Image> frames;
         const auto collect = [&](int, const tr::Image& picture) -> tr::Status {
             frames.push_back(picture);
@@ -317,9 +325,6 @@ void bind_flow_textures(py::module_& m) {
                                             std::declval<const tr::VelocityField&>(), collect)) {
             py::gil_scoped_release release;
             tr::Pipeline pipeline;
-            tr::SceneVolume volume;
-            volume.mesh = name;
-            volume.tets = mesh.mesh;
             TR_TRY(const tr::FlowDomain domain, pipeline.flow_domain(volume));
             TR_TRY(const tr::VelocityField velocity, tr::load_velocity(domain, vectors, false));
             return run(domain, velocity, collect);
@@ -331,7 +336,7 @@ void bind_flow_textures(py::module_& m) {
     };
     m.def(
         "spot_noise",
-        [flow_frames](const TetHandle& mesh, const std::string& name, const std::string& scalar,
+        [flow_frames](const py::object& mesh, const std::string& name, const std::string& scalar,
                       double iso, const std::string& vectors, int steps, std::size_t count,
                       double dt, double band, int lifetime, int width, int height,
                       std::uint64_t seed, bool as_float) {
@@ -350,6 +355,7 @@ void bind_flow_textures(py::module_& m) {
                 flow_frames(mesh, name, vectors, as_float,
                             [&](const tr::FlowDomain& domain, const tr::VelocityField& velocity,
                                 const auto& collect) {
+                                options.planar = domain.planar;
                                 return tr::spot_noise_frames(domain.mesh(), *domain.adjacency,
                                                              velocity, options, collect);
                             });
@@ -368,7 +374,7 @@ void bind_flow_textures(py::module_& m) {
         "flowtex/spot_noise_frames.h spot_noise_frames");
     m.def(
         "advect",
-        [flow_frames](const TetHandle& mesh, const std::string& name, const std::string& vectors,
+        [flow_frames](const py::object& mesh, const std::string& name, const std::string& vectors,
                       std::optional<std::array<double, 3>> point,
                       std::optional<std::array<double, 3>> normal, int steps, double dt,
                       int resolution, const std::string& method, int width, int height,
@@ -390,6 +396,7 @@ void bind_flow_textures(py::module_& m) {
                 flow_frames(mesh, name, vectors, as_float,
                             [&](const tr::FlowDomain& domain, const tr::VelocityField& velocity,
                                 const auto& collect) {
+                                options.planar = domain.planar;
                                 return tr::advect_frames(domain.mesh(), *domain.adjacency, velocity,
                                                          options, collect);
                             });

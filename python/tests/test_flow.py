@@ -78,3 +78,38 @@ def test_spot_noise_and_advection_are_the_clis_frames(ring, cli, output_dir):
         tetrender.spot_noise(mesh, "temperature", 0.5, "temperature")
     with pytest.raises(tetrender.Error, match="method must be 'backward' or 'forward'"):
         tetrender.advect(mesh, "velocity", method="sideways")
+
+
+def test_a_2d_mesh_is_the_flow_as_on_the_command_line(cli, output_dir):
+    # 8 x 8 quads over [0, 2]^2 at z = 0 with a 2-component velocity (1, 0.5): advect and
+    # spot_noise take it as the flow on its plane, frame for frame as the CLI does.
+    n = 9
+    x, y = np.meshgrid(np.linspace(0, 2, n), np.linspace(0, 2, n))
+    points = np.column_stack([x.ravel(), y.ravel(), np.zeros(n * n)])
+    quads = [[j * n + i, j * n + i + 1, (j + 1) * n + i + 1, (j + 1) * n + i]
+             for j in range(n - 1) for i in range(n - 1)]
+    velocity = np.tile([1.0, 0.5], (n * n, 1))
+    meshio.write(output_dir / "flow2d.vtu",
+                 meshio.Mesh(points, [("quad", np.array(quads))], point_data={"v": velocity}))
+    mesh = tetrender.read(output_dir / "flow2d.vtu")
+    size = ["--size", "48x48"]
+    result = run_cli(cli, "advect", str(output_dir / "flow2d.vtu"), "--vectors", "v", "--steps",
+                     "3", "--resolution", "32", *size, "--frames", str(output_dir / "advect2d"))
+    assert result.returncode == 0, result.stderr
+    assert "2D mesh: the flow on its plane" in result.stdout
+    frames, info = tetrender.advect(mesh, "v", steps=3, resolution=32, width=48, height=48)
+    assert info["mean_speed"] == pytest.approx(np.hypot(1.0, 0.5))
+    for k, frame in enumerate(frames):
+        cli_frame = tetrender.read_image(output_dir / "advect2d" / f"frame_{k:04d}.png")
+        assert np.array_equal(np.rint(cli_frame * 255).astype(np.uint8), frame), k
+    assert not np.array_equal(frames[0], frames[3])
+    result = run_cli(cli, "spotnoise", str(output_dir / "flow2d.vtu"), "--vectors", "v",
+                     "--steps", "2", "--count", "300", *size, "--frames",
+                     str(output_dir / "spots2d"))
+    assert result.returncode == 0, result.stderr
+    frames, info = tetrender.spot_noise(mesh, "", 0.0, "v", steps=2, count=300, width=48,
+                                        height=48)
+    assert info["spots"] == 300
+    for k, frame in enumerate(frames):
+        cli_frame = tetrender.read_image(output_dir / "spots2d" / f"frame_{k:04d}.png")
+        assert np.array_equal(np.rint(cli_frame * 255).astype(np.uint8), frame), k

@@ -624,6 +624,22 @@ def _library_tets(mesh: Any) -> Any:
     return tets, source.name
 
 
+# VTK's 2D cells: triangle, polygon, pixel, quad.
+_SURFACE_CELL_TYPES = (5, 7, 8, 9)
+
+
+def _library_flow(mesh: Any) -> Any:
+    """What the flow textures take: the library's tets, or, for a 2D mesh (triangles, quads,
+    polygons only), the library's mesh itself, which they take as the flow on its plane
+    (mesh/planar_slab.h)."""
+    if isinstance(mesh, (str, os.PathLike)):
+        mesh = read(mesh)
+    source = Mesh.from_any(mesh)
+    if len(source.types) > 0 and np.isin(source.types, _SURFACE_CELL_TYPES).all():
+        return source._library_mesh(), source.name
+    return _library_tets(source)
+
+
 def spot_noise(
     mesh: Any,
     scalar: str,
@@ -644,9 +660,11 @@ def spot_noise(
     arrays and a dict of what was chosen (band_tets, spots, band, dt, mean_speed, reseeded).
 
     ``dt`` 0: the spots' mean speed carries a spot 1/400 of the mesh's diagonal a frame;
-    ``band`` 0: the diagonal / 100. Steady flow. The GIL is released meanwhile.
+    ``band`` 0: the diagonal / 100. Steady flow. The GIL is released meanwhile. On a planar
+    2D mesh (triangles, quads, polygons: a 2D flow) ``scalar`` and ``iso`` are not used: the
+    spots cover the mesh (docs/flowtex.md, "A 2D flow").
     """
-    tets, name = _library_tets(mesh)
+    tets, name = _library_flow(mesh)
     as_float = np.dtype(dtype) == np.float32
     frames, info = _core.spot_noise(tets, name, scalar, float(iso), vectors, int(steps),
                                     int(count), float(dt), float(band), int(lifetime), int(width),
@@ -670,9 +688,11 @@ def advect(
     """Texture advection over the slice through ``point`` with ``normal`` (default: the bounds'
     centre, across their thinnest axis) by the point array ``vectors`` (``tetrender advect``,
     docs/flowtex.md): the ``steps + 1`` frames and a dict (sheet_points, sheet_triangles, dt,
-    mean_speed). ``method``: "backward" or "forward". Steady flow; the GIL is released.
+    mean_speed). ``method``: "backward" or "forward". Steady flow; the GIL is released. A
+    planar 2D mesh (triangles, quads, polygons with a 2- or 3-component velocity) is the flow
+    itself: the slice defaults to its plane, seen upright (docs/flowtex.md, "A 2D flow").
     """
-    tets, name = _library_tets(mesh)
+    tets, name = _library_flow(mesh)
     as_float = np.dtype(dtype) == np.float32
     as_triple = (lambda v: None if v is None else tuple(float(c) for c in v))
     frames, info = _core.advect(tets, name, vectors, as_triple(point), as_triple(normal),

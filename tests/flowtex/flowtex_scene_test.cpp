@@ -6,6 +6,7 @@
 #include <flowtex/sheet_raster.h>
 #include <flowtex/spot_noise_frames.h>
 #include <mesh/field.h>
+#include <pipeline/flow_volume_scene.h>
 #include <pipeline/pipeline.h>
 #include <project/opaque_geometry.h>
 #include <tests/flowtex/fixtures.h>
@@ -283,6 +284,122 @@ TEST(FlowtexScene, ClearVolumeSpotsEqualSpotNoiseFrames) {
     // The method's seed places the spots: another seed, other spots.
     scene.method->seed = 7;
     EXPECT_FALSE(render(scene).pixels == frames[4].pixels);
+}
+
+// A planar 2D mesh of quads over [-2, 2]^2 at z = 0 with the 2-component velocity
+// (0.3 - y, x) and a scalar "s" = 0, handed to a scene: a 2D flow.
+Scene flow_2d_scene() {
+    auto mesh = std::make_shared<UnstructuredMesh>();
+    const int n = 16;
+    std::vector<double> v, s;
+    for (int j = 0; j <= n; ++j) {
+        for (int i = 0; i <= n; ++i) {
+            const double x = -2.0 + 4.0 * i / n, y = -2.0 + 4.0 * j / n;
+            mesh->points.push_back(Vec3(x, y, 0.0));
+            v.insert(v.end(), {0.3 - y, x});
+            s.push_back(0.0);
+        }
+    }
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+            const std::int64_t a = j * (n + 1) + i;
+            mesh->add_cell(CellType::kQuad, {a, a + 1, a + n + 2, a + n + 1});
+        }
+    }
+    mesh->point_fields.push_back(make_double_field("velocity", 2, v));
+    mesh->point_fields.push_back(make_double_field("s", 1, s));
+    Scene scene = flow_scene(0.0);
+    scene.volumes[0].tets = nullptr;
+    scene.volumes[0].data = mesh;
+    scene.volumes[0].mesh = "flow_2d";
+    scene.camera = top_camera(true);
+    return scene;
+}
+
+// On a 2D mesh the sheet is the mesh's plane and no volume is drawn: an opaque sheet's frames
+// are advect_frames' frames over the same slab, bit for bit, with no volume render.
+TEST(FlowtexScene, A2DMeshsSheetEqualsAdvectFramesWithNoVolume) {
+    Scene scene = flow_2d_scene();
+    Pipeline pipeline;
+    const FlowDomain domain = pipeline.flow_domain(scene.volumes[0]).value();
+    ASSERT_TRUE(domain.planar.has_value());
+    const VelocityField velocity = load_velocity(domain, "velocity", false).value();
+    AdvectFramesOptions o;
+    o.slice_point = domain.planar->point;
+    o.slice_normal = domain.planar->normal;
+    o.sheet_resolution = 64;
+    o.steps = 6;
+    o.dt = 0.02;
+    o.width = o.height = kSize;
+    o.view_up = upright_view_up(domain.planar->normal);
+    std::vector<Image> expected;
+    ASSERT_TRUE(
+        advect_frames(domain.mesh(), *domain.adjacency, velocity, o, [&](int, const Image& image) {
+            expected.push_back(image);
+            return Status{};
+        }).ok());
+    AdvectedSheetsOptions so;
+    so.slices = {{domain.planar->point, domain.planar->normal}};
+    so.sheet_resolution = 64;
+    so.dt = 0.02;
+    const auto sheets =
+        AdvectedSheets::create(domain.mesh(), *domain.adjacency, velocity, so).value();
+    scene.camera = sheet_camera(sheets->sheet(0), kSize, kSize, o.view_up);
+    MethodSpec m = advection_method({}, 6, 1.0);
+    m.options.erase("slices");  // the default: the 2D mesh's plane
+    scene.method = m;
+    NamedStats stats;
+    const std::vector<Image> frames = scene_frames(scene, &stats);
+    ASSERT_EQ(frames.size(), expected.size());
+    EXPECT_EQ(stats.number("volume_renders"), 0);
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        SCOPED_TRACE(k);
+        EXPECT_TRUE(frames[k].pixels == expected[k].pixels);
+    }
+    EXPECT_FALSE(frames[0].pixels == frames[6].pixels);  // the texture moved
+}
+
+// Spot noise on a 2D mesh needs no contour: the scene's frames are spot_noise_frames' on the
+// slab (spots over the whole sheet), bit for bit; on a 3D mesh `iso` stays required.
+TEST(FlowtexScene, A2DMeshsSpotsEqualSpotNoiseFramesWithNoContour) {
+    Scene scene = flow_2d_scene();
+    Pipeline pipeline;
+    const FlowDomain domain = pipeline.flow_domain(scene.volumes[0]).value();
+    const VelocityField velocity = load_velocity(domain, "velocity", false).value();
+    SpotNoiseFramesOptions o;
+    o.planar = domain.planar;
+    o.spots.count = 2000;
+    o.spots.dt = 0;
+    o.steps = 4;
+    o.width = o.height = kSize;
+    o.camera = scene.camera;
+    std::vector<Image> expected;
+    ASSERT_TRUE(spot_noise_frames(domain.mesh(), *domain.adjacency, velocity, o,
+                                  [&](int, const Image& image) {
+                                      expected.push_back(image);
+                                      return Status{};
+                                  })
+                    .ok());
+    MethodSpec m;
+    m.name = "spot-noise";
+    m.options["vectors"] = std::string("velocity");
+    m.options["count"] = std::int64_t{2000};
+    m.options["steps"] = std::int64_t{4};
+    scene.method = m;
+    const std::vector<Image> frames = scene_frames(scene);
+    ASSERT_EQ(frames.size(), expected.size());
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        SCOPED_TRACE(k);
+        EXPECT_TRUE(frames[k].pixels == expected[k].pixels);
+    }
+    EXPECT_FALSE(frames[0].pixels == frames[4].pixels);
+    Scene three_d = flow_scene(0.0);
+    three_d.camera = scene.camera;
+    three_d.method = m;
+    const auto refused = Pipeline().render(three_d);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().to_string().find("iso"), std::string::npos)
+        << refused.error().to_string();
 }
 
 }  // namespace
