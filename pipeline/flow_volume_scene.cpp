@@ -104,7 +104,7 @@ Result<FlowVolumeSpec> choose_flow_spec(const FlowDomain& domain, FlowVolumeSpec
                          speeds.end());
         seed_speed = speeds[rank].first;
         spec.seed_center = inside_at(mesh, speeds[rank].second);
-        say("no --seed-center: the dye is released at " + xyz(spec.seed_center) +
+        say("seed centre chosen: the dye is released at " + xyz(spec.seed_center) +
             ", where the flow is fastest (speed " + number(seed_speed) + ")");
     } else if (choose.dt) {
         double nearest = std::numeric_limits<double>::infinity();
@@ -115,17 +115,25 @@ Result<FlowVolumeSpec> choose_flow_spec(const FlowDomain& domain, FlowVolumeSpec
     }
     if (choose.seed_size) {
         spec.seed_width = spec.seed_height = diagonal / 8;
-        say("no --seed-size: the dye polygon is " + number(spec.seed_width) + " x " +
+        say("seed size chosen: the dye polygon is " + number(spec.seed_width) + " x " +
             number(spec.seed_height) + " (an eighth of the domain's diagonal a side)");
     }
     if (choose.dt) {
         spec.dt = kDyeTravel * diagonal / (spec.steps * seed_speed);
-        say("no --dt: dt = " + number(spec.dt) + ", so that the front travels " +
+        say("dt chosen: dt = " + number(spec.dt) + ", so that the front travels " +
             std::to_string(static_cast<int>(std::lround(100 * kDyeTravel))) +
             "% of the domain's diagonal in " + std::to_string(spec.steps) +
             " layers at the seed's speed");
     }
     return spec;
+}
+
+Result<FlowVolumeSpec> resolve_flow_spec(const FlowDomain& domain, const FlowVolumeSpec& spec,
+                                         std::vector<std::string>* notes) {
+    if (!spec.choose.any()) return spec;
+    TR_TRY(FlowVolumeSpec chosen, choose_flow_spec(domain, spec, spec.choose, notes));
+    chosen.choose = {};
+    return chosen;
 }
 
 std::optional<Camera> dye_camera(const TetMesh& dye, const Camera& camera, int width, int height) {

@@ -45,14 +45,6 @@ std::vector<std::string> vector_arrays(const TetMesh& mesh);
 // a flow that is zero everywhere, the seed at the bounds' centre and dt 0.05.
 FlowVolumeSpec default_flow_spec(const FlowDomain& domain);
 
-// What a user left for the data to choose (`tetrender flowvol` without --seed-center,
-// --seed-size or --dt).
-struct FlowSpecChoices {
-    bool seed_center = false;
-    bool seed_size = false;
-    bool dt = false;
-};
-
 // The share of the domain's bounding diagonal the dye's front travels over its steps when dt is
 // chosen (at the speed where it is released).
 inline constexpr double kDyeTravel = 0.4;
@@ -67,6 +59,12 @@ inline constexpr double kDyeTravel = 0.4;
 Result<FlowVolumeSpec> choose_flow_spec(const FlowDomain& domain, FlowVolumeSpec spec,
                                         const FlowSpecChoices& choose,
                                         std::vector<std::string>* notes = nullptr);
+
+// spec with what spec.choose names chosen by choose_flow_spec (and spec.choose cleared); spec
+// itself when it names nothing. What a scene's flow_volume without seed_center, seed_size or
+// dt, the viewer's --flowvol-vectors and Python's flow_volume take. Errors: choose_flow_spec's.
+Result<FlowVolumeSpec> resolve_flow_spec(const FlowDomain& domain, const FlowVolumeSpec& spec,
+                                         std::vector<std::string>* notes = nullptr);
 
 // A camera framing the dye `dye` from `camera`'s direction (quick_look.h fitting_camera, the
 // same view angle) when the dye covers less than half of `width` x `height` in both directions

@@ -137,11 +137,17 @@ FlowVolumeSpec flow_volume(const json& j, const std::string& path) {
         fail(path + ".vectors", "expected a vector array's name");
     }
     f.vectors = vectors.get<std::string>();
-    f.seed_center = vec3(require(j, path, "seed_center"), path + ".seed_center");
-    const auto size = numbers(require(j, path, "seed_size"), path + ".seed_size", 2);
-    if (!(size[0] > 0 && size[1] > 0)) fail(path + ".seed_size", "must be positive");
-    f.seed_width = size[0];
-    f.seed_height = size[1];
+    // seed_center, seed_size and dt may be left to the data (resolve_flow_spec).
+    f.choose.seed_center = !j.contains("seed_center");
+    if (!f.choose.seed_center) f.seed_center = vec3(j["seed_center"], path + ".seed_center");
+    f.choose.seed_size = !j.contains("seed_size");
+    if (!f.choose.seed_size) {
+        const auto size = numbers(j["seed_size"], path + ".seed_size", 2);
+        if (!(size[0] > 0 && size[1] > 0)) fail(path + ".seed_size", "must be positive");
+        f.seed_width = size[0];
+        f.seed_height = size[1];
+    }
+    f.choose.dt = !j.contains("dt");
     if (j.contains("seed_resolution")) {
         f.seed_resolution = integer(j["seed_resolution"], path + ".seed_resolution");
         if (f.seed_resolution < 1 || f.seed_resolution > 4096) {
@@ -191,17 +197,18 @@ FlowVolumeSpec flow_volume(const json& j, const std::string& path) {
 json flow_volume_json(const FlowVolumeSpec& f) {
     const auto array = [](const Vec3& v) { return json::array({v.x, v.y, v.z}); };
     json j = {{"vectors", f.vectors},
-              {"seed_center", array(f.seed_center)},
-              {"seed_size", {f.seed_width, f.seed_height}},
               {"seed_resolution", f.seed_resolution},
               {"steps", f.steps},
-              {"dt", f.dt},
               {"compressible", f.compressible},
               {"split_threshold", f.split_threshold},
               {"unsteady", f.unsteady},
               {"color", array(f.color)},
               {"opacity", f.opacity},
               {"context", f.context}};
+    // What the data is left to choose stays unsaid.
+    if (!f.choose.seed_center) j["seed_center"] = array(f.seed_center);
+    if (!f.choose.seed_size) j["seed_size"] = {f.seed_width, f.seed_height};
+    if (!f.choose.dt) j["dt"] = f.dt;
     if (f.seed_normal) j["seed_normal"] = array(*f.seed_normal);
     if (f.start_time) j["start_time"] = *f.start_time;
     if (f.unit_distance) j["unit_distance"] = *f.unit_distance;

@@ -34,6 +34,16 @@ struct OpaqueSpec {
     Vec3 color{0.8, 0.8, 0.8};
 };
 
+// What a user left for the data to choose (`tetrender flowvol` without --seed-center,
+// --seed-size or --dt; a scene's flow_volume without seed_center, seed_size or dt):
+// pipeline/flow_volume_scene.h choose_flow_spec.
+struct FlowSpecChoices {
+    bool seed_center = false;
+    bool seed_size = false;
+    bool dt = false;
+    bool any() const { return seed_center || seed_size || dt; }
+};
+
 // A flow volume grown from the scene's mesh and drawn instead of its scalar (an extension of
 // the spec, docs/scene-file.md; flowvol/flow_volume.h says what each value does).
 struct FlowVolumeSpec {
@@ -56,6 +66,9 @@ struct FlowVolumeSpec {
     // half the picture's width and height, the camera is turned to the dye's own extent, from
     // the same direction (pipeline/flow_volume_scene.h dye_camera).
     bool fit_camera_to_dye = false;
+    // The values above the data chooses when the flow is grown (resolve_flow_spec); their
+    // values here are placeholders until then.
+    FlowSpecChoices choose;
 };
 
 // One volume of a scene: a mesh, the array rendered and its transfer function. A scene with

@@ -64,7 +64,8 @@ struct Args {
     // A flow volume from the command line (as `tetrender flowvol` names the options).
     std::string flowvol_vectors;
     std::vector<double> seed_center, seed_size, seed_normal;
-    FlowVolumeSpec flow;  // resolution, steps, dt, split threshold
+    FlowVolumeSpec flow;  // resolution, steps, split threshold
+    double flow_dt = 0;   // 0: chosen from the flow (resolve_flow_spec)
 };
 
 std::string glfw_error_text;
@@ -132,9 +133,18 @@ int viewer_options(const Args& args, ViewerOptions& options, Integrator& integra
     if (!args.flowvol_vectors.empty()) {
         FlowVolumeSpec spec = args.flow;
         spec.vectors = args.flowvol_vectors;
-        spec.seed_center = Vec3(args.seed_center[0], args.seed_center[1], args.seed_center[2]);
-        spec.seed_width = args.seed_size[0];
-        spec.seed_height = args.seed_size[1];
+        // What is not given is chosen from the flow, as `tetrender flowvol` chooses it.
+        spec.choose = {.seed_center = args.seed_center.empty(),
+                       .seed_size = args.seed_size.empty(),
+                       .dt = args.flow_dt == 0};
+        if (!spec.choose.seed_center) {
+            spec.seed_center = Vec3(args.seed_center[0], args.seed_center[1], args.seed_center[2]);
+        }
+        if (!spec.choose.seed_size) {
+            spec.seed_width = args.seed_size[0];
+            spec.seed_height = args.seed_size[1];
+        }
+        if (!spec.choose.dt) spec.dt = args.flow_dt;
         if (!args.seed_normal.empty()) {
             spec.seed_normal = Vec3(args.seed_normal[0], args.seed_normal[1], args.seed_normal[2]);
         }
@@ -441,19 +451,18 @@ int main(int argc, char** argv) {
     auto* vectors = app.add_option("--flowvol-vectors", args.flowvol_vectors,
                                    "Flow volume: grow the dye through this 3-component point "
                                    "array (replaces a scene's flow_volume)");
-    auto* center =
-        app.add_option("--seed-center", args.seed_center, "Flow volume: dye polygon centre x,y,z")
-            ->expected(3)
-            ->delimiter(',')
-            ->check(tr::apps::kFinite)
-            ->needs(vectors);
-    auto* size =
-        app.add_option("--seed-size", args.seed_size, "Flow volume: dye polygon width,height")
-            ->expected(2)
-            ->delimiter(',')
-            ->check(tr::apps::kPositive)
-            ->needs(vectors);
-    vectors->needs(center)->needs(size);
+    app.add_option("--seed-center", args.seed_center,
+                   "Flow volume: dye polygon centre x,y,z (default: where the flow is fastest)")
+        ->expected(3)
+        ->delimiter(',')
+        ->check(tr::apps::kFinite)
+        ->needs(vectors);
+    app.add_option("--seed-size", args.seed_size,
+                   "Flow volume: dye polygon width,height (default: an eighth of the diagonal)")
+        ->expected(2)
+        ->delimiter(',')
+        ->check(tr::apps::kPositive)
+        ->needs(vectors);
     app.add_option("--seed-normal", args.seed_normal,
                    "Flow volume: dye polygon normal x,y,z (default: the flow at its centre)")
         ->expected(3)
@@ -467,7 +476,9 @@ int main(int argc, char** argv) {
     app.add_option("--steps", args.flow.steps, "Flow volume: layers (default 50)")
         ->check(tr::apps::in_range(1, 100000))
         ->needs(vectors);
-    app.add_option("--dt", args.flow.dt, "Flow volume: time per layer (default 0.05)")
+    app.add_option("--dt", args.flow_dt,
+                   "Flow volume: time per layer (default: the front travels 40% of the diagonal "
+                   "over the steps)")
         ->check(tr::apps::kPositive)
         ->needs(vectors);
     app.add_option("--split-threshold", args.flow.split_threshold,

@@ -239,6 +239,8 @@ Result<ViewerScene> load_viewer_scene(const ViewerOptions& options) {
                               mesh_name);
         }
         TR_TRY_STATUS(check_flow_spec(*vs.flow, *vs.scene.flow_volume));
+        // What the scene or the command line left to the data is chosen, and said.
+        TR_TRY(vs.scene.flow_volume, resolve_flow_spec(*vs.flow, *vs.scene.flow_volume, &notes));
     }
     // Several volumes: volume 0 for the GL renderer only, never convexified.
     TR_TRY(vs.sort, pipeline.prepared_sort(vs.volume(), fused ? SortMethod::kMpvo : options.sort));

@@ -27,9 +27,10 @@ Result<RenderResult> render_flow_volume(Pipeline& pipeline, const Scene& scene,
     add_load_stats(result.stats, *domain.loaded);
     // A scene file's scalar is checked (the file stays a valid spec scene) but not drawn.
     if (!volume.scalar.empty()) TR_TRY_STATUS(pipeline.scalar(volume, domain.mesh()));
+    // What the scene left to the data (seed_center, seed_size, dt) is chosen, and said.
+    TR_TRY(const FlowVolumeSpec spec, resolve_flow_spec(domain, *scene.flow_volume, &result.notes));
     auto start = Clock::now();
-    TR_TRY(FlowVolume grown,
-           grow_scene_flow_volume(domain, *scene.flow_volume, pipeline.options().progress));
+    TR_TRY(FlowVolume grown, grow_scene_flow_volume(domain, spec, pipeline.options().progress));
     auto fv = std::make_shared<const FlowVolume>(std::move(grown));
     result.stats.set("grow_ms", ms_since(start));
     if (fv->unresolved_edges > 0) {
@@ -39,9 +40,9 @@ Result<RenderResult> render_flow_volume(Pipeline& pipeline, const Scene& scene,
                                "the domain)");
     }
     TR_TRY(const OpaqueSet opaque, pipeline.opaque(scene));
-    FlowVolumeView view{scene.camera,    scene.width,        scene.height, scene.background,
-                        opaque.layers(), *scene.flow_volume, nullptr};
-    if (scene.flow_volume->fit_camera_to_dye) {
+    FlowVolumeView view{scene.camera,    scene.width, scene.height, scene.background,
+                        opaque.layers(), spec,        nullptr};
+    if (spec.fit_camera_to_dye) {
         if (auto camera = dye_camera(fv->mesh, scene.camera, scene.width, scene.height)) {
             view.camera = *camera;
             result.notes.push_back(
@@ -50,7 +51,7 @@ Result<RenderResult> render_flow_volume(Pipeline& pipeline, const Scene& scene,
         }
     }
     SurfaceMesh boundary;
-    if (scene.flow_volume->context) {
+    if (spec.context) {
         boundary = boundary_surface(domain.mesh(), *domain.adjacency);
         view.context = &boundary;
     }

@@ -113,3 +113,21 @@ def test_a_2d_mesh_is_the_flow_as_on_the_command_line(cli, output_dir):
     for k, frame in enumerate(frames):
         cli_frame = tetrender.read_image(output_dir / "spots2d" / f"frame_{k:04d}.png")
         assert np.array_equal(np.rint(cli_frame * 255).astype(np.uint8), frame), k
+
+
+def test_flow_volume_without_a_seed_chooses_it_as_the_scene_file_does(ring, cli, output_dir):
+    # No seed_center, seed_size or dt: the library chooses them from the flow, for the scene
+    # file on the command line and for Python alike.
+    meshio.write(output_dir / "ring.vtu", meshio.Mesh(ring["points"], [("hexahedron", ring["hexahedra"])],
+                                                      point_data=ring["point_data"]))
+    scene = scene_dict("ring.vtu")
+    scene["flow_volume"] = {"vectors": "velocity", "seed_resolution": 4, "steps": 10}
+    (output_dir / "chosen.json").write_text(json.dumps(scene))
+    result = run_cli(cli, "render", str(output_dir / "chosen.json"), "-o",
+                     str(output_dir / "chosen.pfm"))
+    assert result.returncode == 0, result.stderr
+    assert "seed centre chosen" in result.stderr and "dt chosen" in result.stderr
+    picture, dye = tetrender.flow_volume(output_dir / "chosen.json", "velocity", dtype=np.float32,
+                                         seed_resolution=4, steps=10)
+    assert np.array_equal(picture, read_pfm(output_dir / "chosen.pfm"))
+    assert dye.num_cells > 0

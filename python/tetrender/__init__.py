@@ -704,8 +704,8 @@ def advect(
 def flow_volume(
     scene: Any,
     vectors: str,
-    seed_center: Any,
-    seed_size: Any,
+    seed_center: Any = None,
+    seed_size: Any = None,
     dtype: Any = np.uint8,
     base_dir: str | os.PathLike | None = None,
     **options: Any,
@@ -717,7 +717,9 @@ def flow_volume(
     array), ``seed_center`` (3 numbers), ``seed_size`` (width, height of the dye polygon) and
     ``options`` (seed_resolution, seed_normal, steps, dt, compressible, split_threshold,
     unsteady, start_time, color, opacity, unit_distance, context: the scene file's keys).
-    Returns the ``(H, W, 3)`` picture and the dye's tetrahedra as a Mesh, with cell arrays
+    ``seed_center``, ``seed_size`` and ``dt`` left out are chosen from the flow as ``tetrender
+    flowvol`` chooses them (the seed where the flow is fastest, an eighth of the diagonal a
+    side, the front travelling 40% of the diagonal over the steps). Returns the ``(H, W, 3)`` picture and the dye's tetrahedra as a Mesh, with cell arrays
     ``concentration`` and ``age`` and point array ``concentration``.
     """
     if isinstance(scene, Scene):
@@ -737,9 +739,11 @@ def flow_volume(
         except json.JSONDecodeError as exc:
             raise Error(f"<scene string>:{exc.lineno}:{exc.colno}: error: {exc.msg}") from None
     scene = dict(scene)
-    spec = {"vectors": vectors,
-            "seed_center": [float(v) for v in seed_center],
-            "seed_size": [float(v) for v in seed_size]}
+    spec: dict = {"vectors": vectors}
+    if seed_center is not None:
+        spec["seed_center"] = [float(v) for v in seed_center]
+    if seed_size is not None:
+        spec["seed_size"] = [float(v) for v in seed_size]
     spec.update({k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in options.items()})
     scene["flow_volume"] = spec
     as_float = np.dtype(dtype) == np.float32

@@ -166,7 +166,7 @@ TEST_P(FlowvolDefaults, ChosenFromTheFlowTheDyeFillsThePicture) {
         c.vectors + " --size 160x120 -o " + testing::shell_quote(out));
     ASSERT_EQ(run.exit_code, 0) << run.err;
     for (const char* said :
-         {"no --seed-center: the dye is released at", "no --seed-size:", "no --dt: dt = "}) {
+         {"seed centre chosen: the dye is released at", "seed size chosen:", "dt chosen: dt = "}) {
         EXPECT_NE(run.err.find(said), std::string::npos) << said << "\n" << run.err;
     }
     const Image picture = testing::read_pfm(out);

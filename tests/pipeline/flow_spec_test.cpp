@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 namespace tr {
 namespace {
@@ -51,7 +52,7 @@ TEST(ChooseFlowSpec, SeedWhereTheFlowIsFastestAndDtFromItsSpeed) {
     EXPECT_EQ(given.seed_width, spec.seed_width);
     EXPECT_NEAR(given.dt, kDyeTravel * diagonal / (20 * 2.0), 1e-6);
     ASSERT_EQ(notes.size(), 1u);
-    EXPECT_NE(notes[0].find("no --dt: dt = "), std::string::npos) << notes[0];
+    EXPECT_NE(notes[0].find("dt chosen: dt = "), std::string::npos) << notes[0];
 }
 
 TEST(ChooseFlowSpec, AStillFlowAndAnUnknownArrayAreErrors) {
@@ -74,6 +75,56 @@ TEST(ChooseFlowSpec, AStillFlowAndAnUnknownArrayAreErrors) {
 }
 
 // A dye in a corner of the picture is framed alone; one that fills it is left as it is.
+// A scene's flow_volume may leave seed_center, seed_size and dt out: they parse as left to the
+// data, a saved scene leaves them out again, and the render chooses them as flowvol does (the
+// picture the explicitly chosen spec gives, bit for bit) and says so.
+TEST(ResolveFlowSpec, ASceneLeavesTheSeedAndDtToTheFlow) {
+    const std::string text = R"({"mesh": "shear.vtu", "scalar": "v",
+        "transfer_function": {"color": [[0, 1, 1, 1], [1, 1, 1, 1]],
+                              "opacity": [[0, 0.1], [1, 0.1]], "unit_distance": 1},
+        "camera": {"position": [12, -10, 9], "focal_point": [2, 2, 2], "view_up": [0, 0, 1]},
+        "image": {"width": 64, "height": 48},
+        "flow_volume": {"vectors": "v", "steps": 10, "seed_resolution": 4}})";
+    Scene scene = parse_scene(text, "/tmp", "chosen.scene.json").value();
+    ASSERT_TRUE(scene.flow_volume.has_value());
+    const FlowSpecChoices& choose = scene.flow_volume->choose;
+    EXPECT_TRUE(choose.seed_center && choose.seed_size && choose.dt);
+    const std::string with_seed = R"("flow_volume": {"vectors": "v", "seed_center": [1, 2, 2],)";
+    std::string given_text = text;
+    given_text.replace(given_text.find(R"("flow_volume": {"vectors": "v",)"),
+                       std::string(R"("flow_volume": {"vectors": "v",)").size(), with_seed);
+    const Scene given = parse_scene(given_text, "/tmp", "given.scene.json").value();
+    EXPECT_FALSE(given.flow_volume->choose.seed_center);
+    EXPECT_TRUE(given.flow_volume->choose.seed_size);
+    EXPECT_EQ(given.flow_volume->seed_center, Vec3(1, 2, 2));
+
+    // Saved, the scene still leaves them to the flow.
+    const std::filesystem::path saved =
+        std::filesystem::temp_directory_path() / "tetrender_resolve_flow_spec.scene.json";
+    ASSERT_TRUE(write_scene(scene, saved).ok());
+    const Scene reread = read_scene(saved).value();
+    std::filesystem::remove(saved);
+    EXPECT_TRUE(reread.flow_volume->choose.seed_center && reread.flow_volume->choose.seed_size &&
+                reread.flow_volume->choose.dt);
+
+    scene.volumes[0].tets = shear_box();
+    Pipeline pipeline;
+    const RenderResult chosen = pipeline.render(scene).value();
+    int said = 0;
+    for (const std::string& note : chosen.notes) {
+        said += note.find("chosen: ") != std::string::npos ? 1 : 0;
+    }
+    EXPECT_EQ(said, 3);
+    Scene explicit_scene = scene;
+    const FlowDomain domain = pipeline.flow_domain(scene.volumes[0]).value();
+    explicit_scene.flow_volume =
+        choose_flow_spec(domain, *scene.flow_volume, scene.flow_volume->choose).value();
+    explicit_scene.flow_volume->choose = {};
+    const RenderResult expected = Pipeline().render(explicit_scene).value();
+    EXPECT_TRUE(chosen.image.pixels == expected.image.pixels);
+    EXPECT_GT(chosen.flow_volume->mesh.num_tets(), 0u);
+}
+
 TEST(DyeCamera, FramesASmallDyeAndLeavesALargeOne) {
     const TetMesh box = testing::freudenthal_box(4, 4, 4, Vec3(0.0), Vec3(4.0));  // [0, 4]^3
     Camera far;
