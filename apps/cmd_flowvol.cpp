@@ -178,8 +178,10 @@ std::function<int()> add_flowvol_command(CLI::App& app) {
     cmd->add_option("--time-step", args->time_step,
                     "The time step to read (steady), or to start from (unsteady); default 0")
         ->check(kNonNegativeInteger);
-    cmd->add_flag("--context", args->spec.context,
-                  "Draw the domain's boundary as a faint veil, for context");
+    args->spec.context = true;  // a first picture shows where the dye is in the domain
+    cmd->add_flag("--context,!--no-context", args->spec.context,
+                  "The domain's boundary as a faint veil over the dye, for context (default on; "
+                  "--no-context: the dye alone)");
     cmd->add_option("-o,--output", args->output, "Output image (.png or .pfm)")->required();
     cmd->add_option("--frames", args->frames, "Also write one picture per layer into DIR");
     cmd->add_option("--mesh-out", args->mesh_out,

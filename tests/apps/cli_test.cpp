@@ -1,14 +1,17 @@
 // The tetrender command line: help, usage errors, bad files, info and tetrahedralize on
 // generated meshes.
 #include <tests/apps/cli_runner.h>
+#include <tests/support/image_check.h>
 #include <tests/support/temp_dir.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 namespace tr {
 namespace {
@@ -225,6 +228,27 @@ TEST(Cli, FlowvolGrowsAndRenders) {
     const auto j = nlohmann::json::parse(info.out);
     // 0.5 x 0.5 polygon, speed 1, 5 steps of 0.1.
     EXPECT_NEAR(j["tetrahedralization"]["volume"].get<double>(), 0.125, 1e-9);
+    // The boundary veil is on by default: without it (--no-context) fewer pixels are lit, and
+    // every pixel the dye alone lights is lit with the veil too.
+    const std::string veiled = dir + "/veiled.pfm", bare = dir + "/bare.pfm";
+    for (const auto& [file, flag] : {std::pair{veiled, ""}, std::pair{bare, " --no-context"}}) {
+        run = run_cli("flowvol " + shell_quote(path) +
+                      " --vectors v --seed-center 0.2,0.5,0.5 --seed-size 0.5,0.5 --seed-res 4"
+                      " --steps 5 --dt 0.1 --size 64x48" +
+                      flag + " -o " + shell_quote(file));
+        ASSERT_EQ(run.exit_code, 0) << run.err;
+    }
+    const Image with_veil = testing::read_pfm(veiled), dye_alone = testing::read_pfm(bare);
+    const Vec3f background(0.02f, 0.02f, 0.05f);
+    std::size_t lit_veiled = 0, lit_bare = 0, lost = 0;
+    for (std::size_t p = 0; p < with_veil.pixels.size(); ++p) {
+        const bool v = glm::length(with_veil.pixels[p] - background) > 0.01f;
+        const bool b = glm::length(dye_alone.pixels[p] - background) > 0.01f;
+        lit_veiled += v, lit_bare += b, lost += b && !v;
+    }
+    std::printf("lit: %zu with the veil, %zu without\n", lit_veiled, lit_bare);
+    EXPECT_GT(lit_veiled, lit_bare + 100);
+    EXPECT_EQ(lost, 0u);
     auto missing = run_cli("flowvol " + shell_quote(path) +
                            " --vectors nope --seed-center 0.2,0.5,0.5 --seed-size 0.5,0.5 -o " +
                            shell_quote(out + "2.png"));
