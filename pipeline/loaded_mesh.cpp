@@ -11,7 +11,9 @@
 
 #include <core/memory_budget.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 
 namespace tr {
 
@@ -55,6 +57,28 @@ double tetrahedralize_bytes(const UnstructuredMesh& input) {
 }
 
 }  // namespace
+
+Status check_coordinate_scale(const Bounds3& bounds, const std::string& name) {
+    const Vec3 far = glm::max(glm::abs(bounds.lo), glm::abs(bounds.hi));
+    const double largest = std::max({far.x, far.y, far.z});
+    const double diagonal = bounds.diagonal();
+    char message[240];
+    if (largest > kMaxCoordinate) {
+        std::snprintf(message, sizeof message,
+                      "coordinates reach %.3g, beyond %.0e: the renderers' single-precision "
+                      "opacities would vanish and draw nothing; rescale the mesh",
+                      largest, kMaxCoordinate);
+        return make_error(ErrorCode::kInvalidMesh, message, name);
+    }
+    if (diagonal < kMinExtent) {
+        std::snprintf(message, sizeof message,
+                      "the mesh spans only %.3g, below %.0e: the renderers' single-precision "
+                      "opacities would overflow; rescale the mesh",
+                      diagonal, kMinExtent);
+        return make_error(ErrorCode::kInvalidMesh, message, name);
+    }
+    return {};
+}
 
 Result<LoadedMesh> load_tet_mesh(UnstructuredMesh input, const std::string& name,
                                  const LoadOptions& options) {
@@ -106,6 +130,7 @@ Result<LoadedMesh> load_tet_mesh(UnstructuredMesh input, const std::string& name
         // Nothing to draw: a black picture with exit 0 would look like a rendering.
         return make_error(ErrorCode::kInvalidMesh, "empty volume: " + why_no_tets(loaded), name);
     }
+    TR_TRY_STATUS(check_coordinate_scale(loaded.tets.bounds(), name));
     loaded.tetrahedralize_ms = ms_since(start);
     return loaded;
 }

@@ -53,6 +53,17 @@ Result<LoadedMesh> load_tet_mesh(const std::filesystem::path& path, const LoadOp
 Result<LoadedMesh> load_tet_mesh(UnstructuredMesh input, const std::string& name,
                                  const LoadOptions& options);
 
+// The coordinates the renderers hold: their opacity tables are single precision, and the
+// extinction of a quick look's unit distance (about the mesh's size) underflows float past
+// about 1e45 (measured: a tet of side 1e45 draws, one of 1e50 draws nothing).
+inline constexpr double kMaxCoordinate = 1e30;
+inline constexpr double kMinExtent = 1e-30;
+
+// An error (kInvalidMesh, naming `name`) when a coordinate's magnitude exceeds kMaxCoordinate
+// or the bounds' diagonal is below kMinExtent, saying to rescale the mesh: such a mesh would be
+// drawn as an empty picture. load_tet_mesh checks it.
+Status check_coordinate_scale(const Bounds3& bounds, const std::string& name);
+
 // `error` with `path` in front of its where ("path: where" or "path").
 Error with_where(Error error, const std::string& path);
 

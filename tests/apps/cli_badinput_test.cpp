@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace tr {
@@ -89,6 +91,40 @@ TEST(CliBadInput, MeshWithNoTetrahedronLeftIsAnError) {
             EXPECT_FALSE(std::filesystem::exists(vtu));
         }
     }
+}
+
+// Coordinates so large (or a mesh so small) that the renderers' single-precision opacities
+// vanish drew an empty picture with exit 0 and a note blaming the transfer function (issue 27):
+// now one line saying to rescale, exit 1, nothing written. 1e30 still renders.
+TEST(CliBadInput, CoordinatesBeyondWhatTheRenderersHoldAreAnError) {
+    const testing::TempDir temp;
+    const std::string dir = temp.string();
+    const auto tet = [](double side) {
+        return legacy_grid({{0, 0, 0}, {side, 0, 0}, {0, side, 0}, {0, 0, side}}, {{0, 1, 2, 3}},
+                           10);
+    };
+    const std::string png = dir + "/out.png";
+    for (const auto& [name, side, said] :
+         {std::tuple{"huge.vtk", 1e50, "coordinates reach 1e+50, beyond 1e+30"},
+          std::tuple{"tiny.vtk", 1e-40, "the mesh spans only 1.73e-40, below 1e-30"}}) {
+        SCOPED_TRACE(name);
+        const std::string in = dir + "/" + name;
+        std::ofstream(in) << tet(side);
+        const testing::CliRun run =
+            run_cli("render " + shell_quote(in) + " -o " + shell_quote(png));
+        EXPECT_EQ(run.exit_code, 1) << run.err;
+        EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;  // one line
+        EXPECT_NE(run.err.find(said), std::string::npos) << run.err;
+        EXPECT_NE(run.err.find("rescale the mesh"), std::string::npos) << run.err;
+        EXPECT_FALSE(std::filesystem::exists(png));
+    }
+    // At 1e30 the picture is drawn: no note of an empty picture.
+    const std::string in = dir + "/large.vtk";
+    std::ofstream(in) << tet(1e30);
+    const testing::CliRun run = run_cli("render " + shell_quote(in) + " -o " + shell_quote(png));
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_EQ(run.err.find("the picture is empty"), std::string::npos) << run.err;
+    EXPECT_TRUE(std::filesystem::exists(png));
 }
 
 // A mistyped subcommand said "A subcommand is required" (issue 13): now one line naming the word

@@ -40,6 +40,15 @@ std::vector<Image> scene_frames(const Scene& scene, NamedStats* stats = nullptr)
     return frames;
 }
 
+// Frame for frame, bit for bit.
+void expect_same_frames(const std::vector<Image>& frames, const std::vector<Image>& expected) {
+    ASSERT_EQ(frames.size(), expected.size());
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        SCOPED_TRACE(k);
+        EXPECT_TRUE(frames[k].pixels == expected[k].pixels);
+    }
+}
+
 Image render(const Scene& scene) {
     Pipeline pipeline;
     auto result = pipeline.render(scene);
@@ -76,13 +85,9 @@ TEST(FlowtexScene, ClearVolumeSheetEqualsAdvectFrames) {
     scene.method = advection_method({{0, 0, 0.1, 0, 0, 1}}, 6, 1.0);
     NamedStats stats;
     const std::vector<Image> frames = scene_frames(scene, &stats);
-    ASSERT_EQ(frames.size(), expected.size());
     EXPECT_EQ(stats.number("layers"), 1);
     EXPECT_EQ(stats.number("volume_renders"), 3);
-    for (std::size_t k = 0; k < frames.size(); ++k) {
-        SCOPED_TRACE(k);
-        EXPECT_TRUE(frames[k].pixels == expected[k].pixels);
-    }
+    expect_same_frames(frames, expected);
     EXPECT_FALSE(frames[0].pixels == frames[6].pixels);  // the texture moved
     // A single render is the last frame.
     EXPECT_TRUE(render(scene).pixels == expected.back().pixels);
@@ -275,11 +280,7 @@ TEST(FlowtexScene, ClearVolumeSpotsEqualSpotNoiseFrames) {
     m.options["steps"] = std::int64_t{4};
     scene.method = m;
     const std::vector<Image> frames = scene_frames(scene);
-    ASSERT_EQ(frames.size(), expected.size());
-    for (std::size_t k = 0; k < frames.size(); ++k) {
-        SCOPED_TRACE(k);
-        EXPECT_TRUE(frames[k].pixels == expected[k].pixels);
-    }
+    expect_same_frames(frames, expected);
     EXPECT_FALSE(frames[0].pixels == frames[4].pixels);
     // The method's seed places the spots: another seed, other spots.
     scene.method->seed = 7;
@@ -350,12 +351,8 @@ TEST(FlowtexScene, A2DMeshsSheetEqualsAdvectFramesWithNoVolume) {
     scene.method = m;
     NamedStats stats;
     const std::vector<Image> frames = scene_frames(scene, &stats);
-    ASSERT_EQ(frames.size(), expected.size());
     EXPECT_EQ(stats.number("volume_renders"), 0);
-    for (std::size_t k = 0; k < frames.size(); ++k) {
-        SCOPED_TRACE(k);
-        EXPECT_TRUE(frames[k].pixels == expected[k].pixels);
-    }
+    expect_same_frames(frames, expected);
     EXPECT_FALSE(frames[0].pixels == frames[6].pixels);  // the texture moved
 }
 
@@ -387,11 +384,7 @@ TEST(FlowtexScene, A2DMeshsSpotsEqualSpotNoiseFramesWithNoContour) {
     m.options["steps"] = std::int64_t{4};
     scene.method = m;
     const std::vector<Image> frames = scene_frames(scene);
-    ASSERT_EQ(frames.size(), expected.size());
-    for (std::size_t k = 0; k < frames.size(); ++k) {
-        SCOPED_TRACE(k);
-        EXPECT_TRUE(frames[k].pixels == expected[k].pixels);
-    }
+    expect_same_frames(frames, expected);
     EXPECT_FALSE(frames[0].pixels == frames[4].pixels);
     Scene three_d = flow_scene(0.0);
     three_d.camera = scene.camera;
