@@ -19,6 +19,13 @@ bool is_surface_cell(CellType type) {
            id == kPixelId;
 }
 
+// Vertices, poly-vertices, lines and polylines (VTK 1 to 4): a 2D result's boundary edges or
+// probe points, which carry no flow and are passed over.
+bool is_point_or_line_cell(CellType type) {
+    const int id = static_cast<int>(type);
+    return id >= 1 && id <= 4;
+}
+
 using Triangle = std::array<std::int64_t, 3>;
 
 // Every cell fanned into triangles from its first node, with the cell each came from; node ids
@@ -29,6 +36,7 @@ Result<std::vector<std::pair<Triangle, std::size_t>>> fan_triangles(const Unstru
     const auto n_points = static_cast<std::int64_t>(mesh.points.size());
     std::vector<std::int64_t> nodes;
     for (std::size_t c = 0; c < mesh.num_cells(); ++c) {
+        if (!is_surface_cell(mesh.types[c])) continue;  // a point or a line
         const std::int64_t begin = mesh.offsets[c], end = mesh.offsets[c + 1];
         nodes.assign(mesh.connectivity.begin() + begin, mesh.connectivity.begin() + end);
         for (const std::int64_t n : nodes) {
@@ -79,8 +87,10 @@ std::vector<T> slab_values(const std::vector<T>& values, int components, const V
 }  // namespace
 
 bool is_surface_mesh(const UnstructuredMesh& mesh) {
-    return !mesh.types.empty() &&
-           std::all_of(mesh.types.begin(), mesh.types.end(), is_surface_cell);
+    return std::any_of(mesh.types.begin(), mesh.types.end(), is_surface_cell) &&
+           std::all_of(mesh.types.begin(), mesh.types.end(), [](CellType type) {
+               return is_surface_cell(type) || is_point_or_line_cell(type);
+           });
 }
 
 Result<PlanarSheet> planar_sheet(const UnstructuredMesh& mesh) {

@@ -30,7 +30,8 @@ struct PlanarSheet {
     double thickness = 0;  // the slab's, world units
 };
 
-// True when `mesh` has cells and every one is 2D (triangle, quad, pixel, polygon): a surface.
+// True when `mesh` has a 2D cell (triangle, quad, pixel, polygon) and every other cell is a
+// vertex or a line (VTK types 1 to 4: boundary edges, probes), which the slab passes over.
 bool is_surface_mesh(const UnstructuredMesh& mesh);
 
 // The plane of a surface mesh and the slab's thickness (the median of the triangles'

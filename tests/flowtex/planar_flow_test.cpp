@@ -200,6 +200,17 @@ TEST(PlanarSlab, RefusesWhatIsNotAPlanarMesh) {
     ASSERT_FALSE(bad_index.ok());
     EXPECT_NE(bad_index.error().message.find("names point 1000"), std::string::npos);
 
+    // Boundary lines beside the quads are passed over (no wedge), a tet is not.
+    UnstructuredMesh with_lines = grid_2d(g, Cells::kQuads, zero, {0.0, 0.0});
+    with_lines.add_cell(static_cast<CellType>(3), {0, 1});
+    with_lines.add_cell(static_cast<CellType>(4), {0, 1, 2});
+    with_lines.cell_fields.push_back(
+        make_double_field("id", 1, std::vector<double>(with_lines.num_cells(), 1.0)));
+    ASSERT_TRUE(is_surface_mesh(with_lines));
+    const auto lines_slab = planar_slab(with_lines, planar_sheet(with_lines).value());
+    ASSERT_TRUE(lines_slab.ok());
+    EXPECT_EQ(lines_slab->num_cells(), 2u * 16u);  // two wedges a quad, none for the lines
+
     UnstructuredMesh mixed = grid_2d(g, Cells::kQuads, zero, {0.0, 0.0});
     mixed.points.push_back(Vec3(0, 0, 1));
     mixed.add_cell(CellType::kTetra, {0, 1, 5, static_cast<std::int64_t>(mixed.points.size() - 1)});
