@@ -158,7 +158,9 @@ int advect_into(const AdvectArgs& args, const AdvectFramesOptions& options,
 std::function<int()> add_advect_command(CLI::App& app) {
     auto args = std::make_shared<AdvectArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "advect", "Advect a noise texture over a slice of a mesh by its vector field (frames)");
+        "advect",
+        "Advect a noise texture over a slice of a mesh (or over a 2D mesh) by its vector "
+        "field (frames)");
     cmd->add_option("mesh", args->mesh,
                     "Mesh with a 3-component point array, or a planar 2D mesh (triangles, "
                     "quads, polygons) with a 2- or 3-component one: the flow on its plane")

@@ -141,7 +141,9 @@ int run_spotnoise(const SpotNoiseArgs& args) {
 std::function<int()> add_spotnoise_command(CLI::App& app) {
     auto args = std::make_shared<SpotNoiseArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "spotnoise", "Spot noise near a contour surface, advected by a vector field (frames)");
+        "spotnoise",
+        "Spot noise near a contour surface (or over a 2D mesh), advected by a vector field "
+        "(frames)");
     cmd->add_option("mesh", args->mesh,
                     "Mesh with a scalar and a 3-component point array, or a planar 2D mesh "
                     "(triangles, quads, polygons) with a 2- or 3-component one")

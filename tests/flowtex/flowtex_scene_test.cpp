@@ -49,6 +49,16 @@ void expect_same_frames(const std::vector<Image>& frames, const std::vector<Imag
     }
 }
 
+// The method spot-noise over the fixture's "velocity" (no contour given).
+MethodSpec spot_noise_method(std::int64_t count, std::int64_t steps) {
+    MethodSpec m;
+    m.name = "spot-noise";
+    m.options["vectors"] = std::string("velocity");
+    m.options["count"] = count;
+    m.options["steps"] = steps;
+    return m;
+}
+
 Image render(const Scene& scene) {
     Pipeline pipeline;
     auto result = pipeline.render(scene);
@@ -272,12 +282,8 @@ TEST(FlowtexScene, ClearVolumeSpotsEqualSpotNoiseFrames) {
                 }).ok());
     Scene scene = flow_scene(0.0);
     scene.camera = camera;
-    MethodSpec m;
-    m.name = "spot-noise";
-    m.options["vectors"] = std::string("velocity");
+    MethodSpec m = spot_noise_method(3000, 4);
     m.options["iso"] = 0.25;
-    m.options["count"] = std::int64_t{3000};
-    m.options["steps"] = std::int64_t{4};
     scene.method = m;
     const std::vector<Image> frames = scene_frames(scene);
     expect_same_frames(frames, expected);
@@ -377,11 +383,7 @@ TEST(FlowtexScene, A2DMeshsSpotsEqualSpotNoiseFramesWithNoContour) {
                                       return Status{};
                                   })
                     .ok());
-    MethodSpec m;
-    m.name = "spot-noise";
-    m.options["vectors"] = std::string("velocity");
-    m.options["count"] = std::int64_t{2000};
-    m.options["steps"] = std::int64_t{4};
+    const MethodSpec m = spot_noise_method(2000, 4);
     scene.method = m;
     const std::vector<Image> frames = scene_frames(scene);
     expect_same_frames(frames, expected);
