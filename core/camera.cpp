@@ -23,6 +23,16 @@ Ray CameraFrame::ray(double x, double y) const {
     return {camera_.position, glm::normalize(forward_ + nx * right_ + ny * up_)};
 }
 
+CameraFrame::PixelDirections CameraFrame::pixel_directions() const {
+    const double sx = half_height_ * aspect_, sy = half_height_;
+    PixelDirections d;
+    d.at_origin =
+        forward_ + ((1.0 / width_ - 1.0) * sx) * right_ + ((1.0 - 1.0 / height_) * sy) * up_;
+    d.per_column = (2.0 / width_ * sx) * right_;
+    d.per_row = (-2.0 / height_ * sy) * up_;
+    return d;
+}
+
 Vec3 CameraFrame::project(const Vec3& world) const {
     const Vec3 d = world - camera_.position;
     const double depth = glm::dot(d, forward_);

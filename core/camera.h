@@ -45,6 +45,14 @@ class CameraFrame {
     Ray ray(double x, double y) const;
     Ray pixel_ray(int i, int j) const { return ray(i + 0.5, j + 0.5); }
 
+    // Perspective: the direction of pixel (i, j)'s ray before it is normalized,
+    // forward + nx right + ny up, is affine in the pixel: at_origin + i per_column + j per_row
+    // (pixel (0, 0)'s centre at the origin). What a rasterizer steps along a row.
+    struct PixelDirections {
+        Vec3 at_origin, per_column, per_row;
+    };
+    PixelDirections pixel_directions() const;
+
     // Image position (x, y in pixel units) and depth (distance along `forward`) of a world
     // point. For a perspective camera, depth <= 0 means behind the eye: x, y are meaningless.
     Vec3 project(const Vec3& world) const;

@@ -1,8 +1,12 @@
 #pragma once
-// The CPU projected-tetrahedra renderer: cells composited back to front in a given order with
-// the premultiplied over operator (equation 1b of the texture-mapping paper), each cell's
-// fragment per pixel the exact segment of that pixel's ray through the tet (right under
-// perspective), clipped at the eye and at opaque depth, shaded by a SegmentShader.
+// The CPU projected-tetrahedra renderer: cells composited in a given visibility order with the
+// premultiplied over operator (equation 1b of the texture-mapping paper), each cell's fragment
+// per pixel the exact segment of that pixel's ray through the tet (right under perspective),
+// clipped at the eye and at opaque depth, shaded by a SegmentShader. Each screen tile takes
+// its cells front to back (the order reversed, the same operator written as "under"), so a
+// pixel whose transmittance falls below 2^-24 takes no more fragments (what lies behind could
+// add no more than a float's rounding); cells whose scalar range the transfer function leaves
+// clear (SegmentShader::clear_between) are not drawn at all, which changes no bit.
 //
 // With the exp-texture integrator, cells are drawn as the paper draws them instead: each
 // projected tet split by Shirley and Tuchman's classification into 3 or 4 triangles around the
@@ -29,7 +33,7 @@
 namespace tr {
 
 struct RenderStats {
-    std::size_t cells_drawn = 0;  // cells whose projection reached the image
+    std::size_t cells_drawn = 0;  // cells reaching the image, less those left clear
     std::size_t fragments = 0;    // (cell, pixel) pairs with a segment of positive length
     double raster_ms = 0;
 };

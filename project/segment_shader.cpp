@@ -100,6 +100,8 @@ SegmentShader::SegmentShader(const TransferFunction& tf, Integrator integrator, 
         kappa_max_ = std::max(kappa_max_, tf.extinction_from_opacity(p.a));
     }
     if (integrator == Integrator::kExpTexture) {
+        exp_u_scale_ = (kExpSize - 1) / max_length_;
+        exp_v_scale_ = (kExpSize - 1) / kappa_max_;  // +inf for kappa_max 0 or subnormal
         // u in [0, max_length], v in [0, kappa_max]: texel (i, j) holds 1 - exp(-u_i v_j).
         exp_table_.resize(kExpSize * kExpSize);
         for (int j = 0; j < kExpSize; ++j) {
@@ -226,23 +228,30 @@ ShadedSegment SegmentShader::exact(double s_front, double s_back, double length)
 }
 
 ShadedSegment SegmentShader::exp_texture(double s_front, double s_back, double length) const {
+    // Halves added (two extinctions near the largest double would sum to inf).
+    const double v = 0.5 * tf_.extinction(s_front) + 0.5 * tf_.extinction(s_back);
+    return exp_texture_at(length, v, 0.5 * (s_front + s_back), s_front, s_back);
+}
+
+ShadedSegment SegmentShader::exp_texture_at(double length, double mean_extinction, double s_mean,
+                                            double s_front, double s_back) const {
     if (!(length > 0)) return {Vec3f(0.0f), 0.0f};
     // An infinite largest extinction (a unit distance of 1e-320 makes -ln(1 - a) / d
     // overflow): the texture's row v / kappa_max would be inf / inf; integrated directly.
-    if (length > max_length_ || !(kappa_max_ > 0) || !std::isfinite(kappa_max_))
+    // (A kappa_max of 0 or too small for its reciprocal leaves exp_v_scale_ infinite.)
+    if (length > max_length_ || !std::isfinite(kappa_max_) || !std::isfinite(exp_v_scale_) ||
+        !std::isfinite(mean_extinction))
         return exact(s_front, s_back, length);
-    // Halves added (two extinctions near the largest double would sum to inf), and the row
-    // at most the last: v <= kappa_max up to rounding.
-    const double v = 0.5 * tf_.extinction(s_front) + 0.5 * tf_.extinction(s_back);
-    const double x = length / max_length_ * (kExpSize - 1);
-    const double y = std::min(v / kappa_max_, 1.0) * (kExpSize - 1);
+    // The row at most the last: v <= kappa_max up to rounding.
+    const double x = std::min(length * exp_u_scale_, double{kExpSize - 1});
+    const double y = std::clamp(mean_extinction * exp_v_scale_, 0.0, double{kExpSize - 1});
     const int i = std::min(static_cast<int>(x), kExpSize - 2);
     const int j = std::min(static_cast<int>(y), kExpSize - 2);
     const double fx = x - i, fy = y - j;
     const float* t = &exp_table_[j * kExpSize + i];
     const double alpha = (1 - fy) * ((1 - fx) * t[0] + fx * t[1]) +
                          fy * ((1 - fx) * t[kExpSize] + fx * t[kExpSize + 1]);
-    const Vec3 c = tf_.color(0.5 * (s_front + s_back));
+    const Vec3 c = tf_.color(s_mean);
     return {Vec3f(c * alpha), static_cast<float>(alpha)};
 }
 

@@ -115,6 +115,10 @@ class SegmentShader {
     // the processor overlap the segments' lookups. Precondition: out.size() >= queries.size().
     void shade(std::span<const SegmentQuery> queries, std::span<ShadedSegment> out) const;
 
+    // Whether every segment whose scalars lie between s0 and s1 shades to nothing (colour and
+    // opacity exactly 0, whatever the integrator): the transfer function is clear there.
+    bool clear_between(double s0, double s1) const { return tf_.clear_between(s0, s1); }
+
     Integrator integrator() const { return integrator_; }
     SegmentShaderTables tables() const;
 
@@ -127,6 +131,10 @@ class SegmentShader {
   private:
     ShadedSegment exact(double s_front, double s_back, double length) const;
     ShadedSegment exp_texture(double s_front, double s_back, double length) const;
+    // The texture read at thickness `length` and mean extinction `mean_extinction`, the colour
+    // at `s_mean`; the end scalars for what the texture does not cover (integrated directly).
+    ShadedSegment exp_texture_at(double length, double mean_extinction, double s_mean,
+                                 double s_front, double s_back) const;
     // kPreintegrated for any scalars (the parts beyond the control points are uniform slabs);
     // for scalars in [s_lo_, s_hi_] (the common path); its mean extinction at table coordinates
     // (x, y), read or in closed form; its end from the optical depth tau.
@@ -148,6 +156,7 @@ class SegmentShader {
     double kappa_max_;                 // largest extinction, for the exp texture's v axis
     std::vector<double> breakpoints_;  // control-point scalars, sorted, unique
     std::vector<float> exp_table_;     // kExpTexture: kExpSize x kExpSize, 1 - exp(-u v)
+    double exp_u_scale_ = 0, exp_v_scale_ = 0;  // kExpTexture: texels per unit of u and of v
     // kPreintegrated: its tables (immutable, shared by copies, which share tf_ too), and the
     // (front, back, length) table of tables(), built on its first call.
     std::shared_ptr<const detail::Preintegration> pre_;

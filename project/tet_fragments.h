@@ -41,10 +41,16 @@ struct TileBins {
 // Cost: O(cells + tiles covered).
 TileBins bin_cells(const TetMesh& mesh, std::span<const CellId> cells, const CameraFrame& camera);
 
-// The pixel rays of one tile (computed once per tile) and its pixel range.
+// The pixel rays of one tile (computed once per tile) and its pixel range. Under perspective
+// also the rays' directions before normalization, affine in the pixel (direction_origin, the
+// tile's first pixel, plus column and row steps), and their lengths: what for_each_fragment
+// steps along a row.
 struct TileRays {
+    static constexpr int kPadding = 4;     // a row's last block of 4 pixels may read past its end
     int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // inclusive
     Ray rays[kFragmentTile * kFragmentTile];
+    Vec3 direction_origin{0.0}, direction_per_column{0.0}, direction_per_row{0.0};
+    double direction_length[kFragmentTile * kFragmentTile + kPadding];
 
     const Ray& at(int x, int y) const { return rays[(y - y0) * kFragmentTile + (x - x0)]; }
 };
@@ -60,6 +66,19 @@ class CellFragments {
                   const CameraFrame& camera);
 
     const TetPlanes& planes() const { return planes_; }
+    bool orthographic() const { return orthographic_; }
+
+    // Perspective: the cell's planes and scalar over one tile's pixels, each affine in the
+    // pixel (i, j) of the tile: a + b i + c j. The ray through the pixel, eye + u D with D its
+    // direction before normalization (TileRays), meets plane k at u = numerator[k] /
+    // denominator_k(i, j); the scalar along it is s_eye + u slope(i, j).
+    struct TileSetup {
+        double numerator[4];
+        double den_a[4], den_b[4], den_c[4];
+        bool parallel_misses[4];  // a ray parallel to plane k (denominator 0) misses the cell
+        double s_eye, slope_a, slope_b, slope_c;
+    };
+    TileSetup tile_setup(const TileRays& rays) const;
 
     // The fragment of `ray` (a pixel ray of the camera) through the cell clipped to
     // [0, max_t]: false when there is none of positive length. Cost: O(1).
@@ -108,14 +127,39 @@ class CellFragments {
     double s_eye_ = 0;
 };
 
+// The fragments of one cell in one tile, in the order for_each_fragment gives them.
+struct TileFragments {
+    int count = 0;
+    std::uint16_t x[kFragmentTile * kFragmentTile], y[kFragmentTile * kFragmentTile];
+    double t_in[kFragmentTile * kFragmentTile], t_out[kFragmentTile * kFragmentTile];
+    double s_in[kFragmentTile * kFragmentTile], s_out[kFragmentTile * kFragmentTile];
+};
+
+// Perspective only: fills `out` with the fragments for_each_fragment would give (the pixels of
+// the box x0..x1, y0..y1 within the tile). Four pixels of a row at once, the denominators
+// stepped along the row (affine in the pixel), in AVX2 where the processor has it (the same
+// bits either way: no fused multiply-add).
+void find_perspective_fragments(const CellFragments& cell, int x0, int y0, int x1, int y1,
+                                const TileRays& rays, int width, std::span<const double> max_depth,
+                                TileFragments& out);
+
 // Calls fn(x, y, t_in, t_out, s_in, s_out) for every pixel of `box` inside the tile whose ray
 // has a fragment through the cell, clipped at `max_depth` (per pixel of the camera's picture,
-// or empty for no limit).
+// or empty for no limit), row by row, left to right.
 template <class Fn>
 void for_each_fragment(const CellFragments& cell, const ScreenBox& box, const TileRays& rays,
                        int width, std::span<const double> max_depth, Fn&& fn) {
     const int x0 = std::max(box.x0, rays.x0), x1 = std::min(box.x1, rays.x1);
     const int y0 = std::max(box.y0, rays.y0), y1 = std::min(box.y1, rays.y1);
+    if (!cell.orthographic()) {
+        TileFragments found;
+        find_perspective_fragments(cell, x0, y0, x1, y1, rays, width, max_depth, found);
+        for (int f = 0; f < found.count; ++f) {
+            fn(int{found.x[f]}, int{found.y[f]}, found.t_in[f], found.t_out[f], found.s_in[f],
+               found.s_out[f]);
+        }
+        return;
+    }
     for (int y = y0; y <= y1; ++y) {
         for (int x = x0; x <= x1; ++x) {
             const double limit =

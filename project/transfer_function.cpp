@@ -91,6 +91,19 @@ double TransferFunction::opacity(double s) const {
                                                   [](const OpacityPoint& p) { return p.a; });
 }
 
+bool TransferFunction::clear_between(double s0, double s1) const {
+    if (std::isnan(s0) || std::isnan(s1)) return false;
+    if (s0 > s1) std::swap(s0, s1);
+    if (opacity(s0) != 0 || opacity(s1) != 0) return false;
+    // The control points inside (and on the ends: a step there has its other side at s0, s1).
+    const auto first = std::lower_bound(opacity_.begin(), opacity_.end(), s0,
+                                        [](const OpacityPoint& q, double x) { return q.s < x; });
+    for (auto it = first; it != opacity_.end() && it->s <= s1; ++it) {
+        if (it->a != 0) return false;
+    }
+    return true;
+}
+
 double TransferFunction::extinction_from_opacity(double a) const {
     return -std::log1p(-a) / unit_distance_;
 }

@@ -45,6 +45,11 @@ class TransferFunction {
     // crossed (a cumulative sum covers whole pieces), two logarithms per end piece.
     double mean_extinction(double s0, double s1) const;
 
+    // Whether the opacity is zero at every scalar between s0 and s1 (either order; false when
+    // either is NaN): a segment whose scalar stays there absorbs and emits nothing. Cost:
+    // O(log n) plus the control points inside.
+    bool clear_between(double s0, double s1) const;
+
     const std::vector<ColorPoint>& color_points() const { return color_; }
     const std::vector<OpacityPoint>& opacity_points() const { return opacity_; }
     double unit_distance() const { return unit_distance_; }

@@ -258,5 +258,51 @@ TEST(SegmentShader, BatchShadesAsOneByOne) {
     }
 }
 
+// What lets the renderer leave cells out: a transfer function clear over a scalar interval
+// (zero opacity there, steps and plateaus included) and segments inside it shading to exactly
+// nothing with every integrator.
+TEST(SegmentShader, SegmentsWhereTheTransferFunctionIsClearShadeToNothing) {
+    // Clear below 0.3 and on [0.6, 0.7] (a plateau between two ramps), a step up at 0.9.
+    const TransferFunction tf =
+        TransferFunction::create({{0.0, {0.2, 0.4, 0.9}}, {1.0, {0.9, 0.3, 0.1}}},
+                                 {{0.1, 0.0},
+                                  {0.3, 0.0},
+                                  {0.45, 0.5},
+                                  {0.6, 0.0},
+                                  {0.7, 0.0},
+                                  {0.8, 0.3},
+                                  {0.9, 0.3},
+                                  {0.9, 0.0},
+                                  {1.0, 0.0}},
+                                 0.5)
+            .value();
+    EXPECT_TRUE(tf.clear_between(-5.0, 0.3));
+    EXPECT_TRUE(tf.clear_between(0.7, 0.6));  // either order
+    EXPECT_TRUE(tf.clear_between(0.62, 0.68));
+    EXPECT_TRUE(tf.clear_between(0.95, 7.0));  // beyond the last point: clamped to 0
+    EXPECT_FALSE(tf.clear_between(0.25, 0.31));
+    EXPECT_FALSE(tf.clear_between(0.55, 0.62));
+    EXPECT_FALSE(tf.clear_between(0.2, 0.65));   // clear at both ends, not between
+    EXPECT_FALSE(tf.clear_between(0.85, 0.95));  // across the step down
+    EXPECT_FALSE(tf.clear_between(std::nan(""), 0.2));
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (Integrator integrator :
+         {Integrator::kExact, Integrator::kPreintegrated, Integrator::kExpTexture}) {
+        const SegmentShader shader(tf, integrator, 4.0);
+        for (int i = 0; i < 2000; ++i) {
+            // Inside one of the clear intervals, lengths up to the table's and beyond.
+            const double lo = i % 2 ? 0.6 : -0.5, hi = i % 2 ? 0.7 : 0.3;
+            const double s0 = lo + (hi - lo) * unit(rng), s1 = lo + (hi - lo) * unit(rng);
+            ASSERT_TRUE(shader.clear_between(s0, s1));
+            const ShadedSegment seg = shader.shade(s0, s1, 6.0 * unit(rng));
+            EXPECT_EQ(seg.alpha, 0.0f);
+            EXPECT_EQ(seg.color, Vec3f(0.0f));
+        }
+        // Not a shader that shades nothing anywhere.
+        EXPECT_GT(shader.shade(0.4, 0.5, 1.0).alpha, 0.1f);
+    }
+}
+
 }  // namespace
 }  // namespace tr
