@@ -3,15 +3,21 @@
 # end of the tetrender CLI (demo, quick looks of ../shared/data meshes, scenes, frames): run it
 # with the binary before and after a change that must not change a picture, then diff the lists.
 #   scripts/picture_fingerprints.sh [TETRENDER_BINARY] > before.txt
-# Default binary: build/apps/tetrender. The pictures go to a temporary folder, removed at exit.
+# Default binary: build/apps/tetrender. The pictures go to a temporary folder, removed at exit,
+# or to $FINGERPRINT_DIR when set (kept, to compare two runs' pictures where the hashes differ).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=$(realpath "${1:-build/apps/tetrender}")
 data=$(realpath ../shared/data)
 [ -x "$bin" ] || { echo "picture_fingerprints.sh: no tetrender binary at $bin" >&2; exit 2; }
 [ -d "$data" ] || { echo "picture_fingerprints.sh: ../shared/data is missing" >&2; exit 2; }
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
+if [ -n "${FINGERPRINT_DIR:-}" ]; then
+  out=$(realpath -m "$FINGERPRINT_DIR")
+  mkdir -p "$out"
+else
+  out=$(mktemp -d)
+  trap 'rm -rf "$out"' EXIT
+fi
 run() {  # run NAME ARGS...: one picture (or folder of frames) named NAME
   local name=$1; shift
   "$bin" "$@" > "$out/$name.log" 2>&1 || { echo "picture_fingerprints.sh: $name failed:" >&2; cat "$out/$name.log" >&2; exit 1; }
