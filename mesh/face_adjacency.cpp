@@ -1,7 +1,9 @@
+#include <core/parallel.h>
 #include <mesh/face_adjacency.h>
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <numeric>
 #include <string>
 
@@ -81,33 +83,48 @@ Result<FaceAdjacency> build_face_adjacency(const TetMesh& mesh) {
         }
     }
 
+    // Each bucket sorted and its faces matched, buckets in parallel (every face is in one
+    // bucket, so each neighbour slot is written once); of several overlaps, the one of the
+    // smallest point is reported, as a serial pass would.
     FaceAdjacency adjacency;
     adjacency.neighbors.assign(num_tets, {kNoCell, kNoCell, kNoCell, kNoCell});
-    for (std::size_t p = 0; p < num_points; ++p) {
-        auto first = entries.begin() + bucket_start[p];
-        auto last = entries.begin() + bucket_start[p + 1];
-        std::sort(first, last, [](const FaceEntry& x, const FaceEntry& y) {
-            return x.b != y.b ? x.b < y.b : (x.c != y.c ? x.c < y.c : x.tet_face < y.tet_face);
-        });
-        for (auto it = first; it != last;) {
-            auto next = it + 1;
-            while (next != last && next->b == it->b && next->c == it->c) ++next;
-            const auto count = next - it;
-            if (count == 2) {
-                const std::uint32_t f0 = it->tet_face;
-                const std::uint32_t f1 = (it + 1)->tet_face;
-                adjacency.neighbors[f0 / 4][f0 % 4] = f1 / 4;
-                adjacency.neighbors[f1 / 4][f1 % 4] = f0 / 4;
-            } else if (count > 2) {
-                return make_error(ErrorCode::kInvalidMesh,
-                                  std::to_string(count) + " tets share the face (" +
-                                      std::to_string(p) + ", " + std::to_string(it->b) + ", " +
-                                      std::to_string(it->c) + "): the mesh overlaps itself",
-                                  "tet " + std::to_string(it->tet_face / 4));
+    std::mutex overlap_mutex;
+    std::size_t overlap_point = num_points;
+    Error overlap;
+    parallel_for_chunks(0, num_points, 4096, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t p = begin; p < end; ++p) {
+            auto first = entries.begin() + bucket_start[p];
+            auto last = entries.begin() + bucket_start[p + 1];
+            std::sort(first, last, [](const FaceEntry& x, const FaceEntry& y) {
+                return x.b != y.b ? x.b < y.b : (x.c != y.c ? x.c < y.c : x.tet_face < y.tet_face);
+            });
+            for (auto it = first; it != last;) {
+                auto next = it + 1;
+                while (next != last && next->b == it->b && next->c == it->c) ++next;
+                const auto count = next - it;
+                if (count == 2) {
+                    const std::uint32_t f0 = it->tet_face;
+                    const std::uint32_t f1 = (it + 1)->tet_face;
+                    adjacency.neighbors[f0 / 4][f0 % 4] = f1 / 4;
+                    adjacency.neighbors[f1 / 4][f1 % 4] = f0 / 4;
+                } else if (count > 2) {
+                    const std::lock_guard<std::mutex> lock(overlap_mutex);
+                    if (p < overlap_point) {
+                        overlap_point = p;
+                        overlap =
+                            make_error(ErrorCode::kInvalidMesh,
+                                       std::to_string(count) + " tets share the face (" +
+                                           std::to_string(p) + ", " + std::to_string(it->b) + ", " +
+                                           std::to_string(it->c) + "): the mesh overlaps itself",
+                                       "tet " + std::to_string(it->tet_face / 4));
+                    }
+                    return;  // nothing later in this chunk can come first
+                }
+                it = next;
             }
-            it = next;
         }
-    }
+    });
+    if (overlap_point < num_points) return overlap;
     for (std::size_t t = 0; t < num_tets; ++t) {
         for (int k = 0; k < 4; ++k) {
             if (adjacency.neighbors[t][k] == kNoCell) {

@@ -1,10 +1,14 @@
+#include <core/parallel.h>
 #include <mesh/tetrahedralize.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <numeric>
 #include <string>
+#include <thread>
 #include <unordered_map>
 
 namespace tr {
@@ -176,9 +180,10 @@ Result<std::vector<std::uint8_t>> validate_cells(const UnstructuredMesh& in,
     }
     report_progress(options.progress, "tetrahedralizing", 0.0);
     std::vector<std::uint8_t> keep(num_cells, 1);
+    std::array<std::size_t, 256> cells_by_type{};  // CellType is a byte; the map at the end
     for (std::size_t c = 0; c < num_cells; ++c) {
         const CellType type = in.types[c];
-        ++report.input_cells[type];
+        ++cells_by_type[static_cast<std::uint8_t>(type)];
         const std::int64_t begin = in.offsets[c];
         const std::int64_t end = in.offsets[c + 1];
         if (end < begin) {
@@ -222,6 +227,9 @@ Result<std::vector<std::uint8_t>> validate_cells(const UnstructuredMesh& in,
             }
         }
         if (is_quadratic(type)) ++report.num_quadratic_cells;
+    }
+    for (std::size_t t = 0; t < cells_by_type.size(); ++t) {
+        if (cells_by_type[t]) report.input_cells[static_cast<CellType>(t)] += cells_by_type[t];
     }
     return keep;
 }
@@ -430,48 +438,81 @@ class CellSplitter {
 };
 
 // Every kept cell split into tets, each with its source cell.
+// Chunks of cells split concurrently, each into its own tets, then joined in cell order: the
+// result does not depend on the thread count.
 void split_cells(const UnstructuredMesh& in, const std::vector<std::uint8_t>& keep,
                  const KeptPoints& kept, const TetrahedralizeOptions& options,
                  TetrahedralizeReport& report, std::vector<Tet>& tets,
                  std::vector<CellId>& sources) {
     const std::size_t num_cells = in.num_cells();
-    tets.reserve(num_cells * 5);
-    sources.reserve(num_cells * 5);
-    CellSplitter splitter(kept.points, kept.rank, options.tet_options.degenerate_tolerance);
-    std::vector<PointId> corner(12);
-    std::array<PointId, 12> corner_rank{};
-    const std::size_t progress_step = std::max<std::size_t>(num_cells / 100, 1);
-    for (std::size_t c = 0; c < num_cells; ++c) {
-        if (c % progress_step == 0) {
-            report_progress(options.progress, "tetrahedralizing",
-                            static_cast<double>(c) / static_cast<double>(num_cells));
+    constexpr std::size_t kChunk = 16384;
+    struct Chunk {
+        std::vector<Tet> tets;
+        std::vector<CellId> sources;
+        TetrahedralizeReport report;
+    };
+    std::vector<Chunk> chunks((num_cells + kChunk - 1) / kChunk);
+    // Progress from the calling thread only (core/progress.h), in whole percents.
+    const std::thread::id caller = std::this_thread::get_id();
+    std::mutex progress_mutex;
+    std::size_t cells_done = 0;
+    int percent_reported = 0;
+    parallel_for(0, chunks.size(), 1, [&](std::size_t index) {
+        Chunk& chunk = chunks[index];
+        const std::size_t begin = index * kChunk, end = std::min(begin + kChunk, num_cells);
+        chunk.tets.reserve(end - begin);
+        chunk.sources.reserve(end - begin);
+        CellSplitter splitter(kept.points, kept.rank, options.tet_options.degenerate_tolerance);
+        std::vector<PointId> corner(12);
+        std::array<PointId, 12> corner_rank{};
+        for (std::size_t c = begin; c < end; ++c) {
+            if (!keep[c]) continue;
+            CellType type = linear_type(in.types[c]);
+            const int corners = cell_corner_count(type);
+            const std::int64_t* nodes = in.connectivity.data() + in.offsets[c];
+            for (int k = 0; k < corners; ++k) {
+                corner[k] = kept.new_index[kept.representative[nodes[k]]];
+            }
+            if (type == CellType::kVoxel) {
+                corner = {corner[0], corner[1], corner[3], corner[2],
+                          corner[4], corner[5], corner[7], corner[6]};
+                type = CellType::kHexahedron;
+            }
+            for (int k = 0; k < corners; ++k) corner_rank[k] = kept.rank[corner[k]];
+            const CellSplitter::Split split =
+                splitter.split(type, corner, corner_rank, corners, chunk.report);
+            if (split.good == 0) {
+                ++chunk.report.num_degenerate_cells;
+                continue;
+            }
+            chunk.report.num_degenerate_tets += splitter.tets().size() - split.good;
+            if (split.volume < 0) ++chunk.report.num_inverted_cells;
+            for (const Tet& t : splitter.tets()) {
+                if (t[0] == kNoCell) continue;
+                chunk.tets.push_back(t);
+                chunk.sources.push_back(static_cast<CellId>(c));
+            }
         }
-        if (!keep[c]) continue;
-        CellType type = linear_type(in.types[c]);
-        const int corners = cell_corner_count(type);
-        const std::int64_t* nodes = in.connectivity.data() + in.offsets[c];
-        for (int k = 0; k < corners; ++k) {
-            corner[k] = kept.new_index[kept.representative[nodes[k]]];
+        const std::lock_guard<std::mutex> lock(progress_mutex);
+        cells_done += end - begin;
+        const double fraction = static_cast<double>(cells_done) / static_cast<double>(num_cells);
+        if (std::this_thread::get_id() == caller && fraction * 100 >= percent_reported + 1) {
+            percent_reported = static_cast<int>(fraction * 100);
+            report_progress(options.progress, "tetrahedralizing", fraction);
         }
-        if (type == CellType::kVoxel) {
-            corner = {corner[0], corner[1], corner[3], corner[2],
-                      corner[4], corner[5], corner[7], corner[6]};
-            type = CellType::kHexahedron;
-        }
-        for (int k = 0; k < corners; ++k) corner_rank[k] = kept.rank[corner[k]];
-        const CellSplitter::Split split =
-            splitter.split(type, corner, corner_rank, corners, report);
-        if (split.good == 0) {
-            ++report.num_degenerate_cells;
-            continue;
-        }
-        report.num_degenerate_tets += splitter.tets().size() - split.good;
-        if (split.volume < 0) ++report.num_inverted_cells;
-        for (const Tet& t : splitter.tets()) {
-            if (t[0] == kNoCell) continue;
-            tets.push_back(t);
-            sources.push_back(static_cast<CellId>(c));
-        }
+    });
+    std::size_t total = 0;
+    for (const Chunk& chunk : chunks) total += chunk.tets.size();
+    tets.reserve(total);
+    sources.reserve(total);
+    for (Chunk& chunk : chunks) {
+        tets.insert(tets.end(), chunk.tets.begin(), chunk.tets.end());
+        sources.insert(sources.end(), chunk.sources.begin(), chunk.sources.end());
+        report.num_degenerate_cells += chunk.report.num_degenerate_cells;
+        report.num_degenerate_tets += chunk.report.num_degenerate_tets;
+        report.num_inverted_cells += chunk.report.num_inverted_cells;
+        report.num_tangled_cells += chunk.report.num_tangled_cells;
+        chunk = Chunk{};  // freed as soon as joined
     }
 }
 
