@@ -1,5 +1,6 @@
 // Property tests of the conforming split, the adjacency and the convexity test on random mixed
 // meshes.
+#include <core/parallel.h>
 #include <mesh/face_adjacency.h>
 #include <mesh/tetrahedralize.h>
 #include <tests/support/mixed_grid.h>
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <tuple>
 
 namespace tr {
 namespace {
@@ -74,6 +76,48 @@ TEST(Tetrahedralize, RandomMixedMeshesAreConformingAndConserveVolume) {
         EXPECT_TRUE(convexity.convex);
         EXPECT_EQ(convexity.num_boundary_components, 1u);
     }
+}
+
+// The split and the adjacency run in parallel chunks (16384 cells each) joined in order: the
+// tets, their sources, the report and the neighbours are the same whatever the thread count.
+TEST(Tetrahedralize, SameTetsAndNeighboursWhateverTheThreadCount) {
+    MixedGridOptions o;
+    o.nx = o.ny = 26;
+    o.nz = 16;  // 10816 boxes of 1 to 12 cells: 40,000-odd cells, three chunks
+    o.seed = 11;
+    const UnstructuredMesh input = make_mixed_grid(o);
+    ASSERT_GT(input.num_cells(), 16384u * 2);
+    auto run = [&](int threads) {
+        set_thread_count(threads);
+        TetrahedralizeReport report;
+        TetMesh mesh = tetrahedralize(input, {}, &report).value();
+        FaceAdjacency adjacency = build_face_adjacency(mesh).value();
+        set_thread_count(0);
+        return std::make_tuple(std::move(mesh), std::move(adjacency), report);
+    };
+    const auto [one, one_adjacency, one_report] = run(1);
+    const auto [two, two_adjacency, two_report] = run(2);
+    const auto [five, five_adjacency, five_report] = run(5);
+    for (const auto* other : {&two, &five}) {
+        ASSERT_EQ(one.num_tets(), other->num_tets());
+        EXPECT_TRUE(std::equal(one.tets().begin(), one.tets().end(), other->tets().begin()));
+        EXPECT_EQ(one.source_cells(), other->source_cells());
+        EXPECT_EQ(one.points(), other->points());
+    }
+    for (const auto* other : {&two_adjacency, &five_adjacency}) {
+        EXPECT_EQ(one_adjacency.neighbors, other->neighbors);
+        EXPECT_EQ(one_adjacency.boundary_faces.size(), other->boundary_faces.size());
+    }
+    for (const auto* other : {&two_report, &five_report}) {
+        EXPECT_EQ(one_report.input_cells, other->input_cells);
+        EXPECT_EQ(one_report.num_degenerate_tets, other->num_degenerate_tets);
+        EXPECT_EQ(one_report.num_inverted_cells, other->num_inverted_cells);
+        EXPECT_EQ(one_report.num_tets, other->num_tets);
+    }
+    // Not a trivial mesh: every kind of cell, interior faces matched.
+    EXPECT_GE(one_report.input_cells.size(), 3u);
+    EXPECT_GT(one_adjacency.boundary_faces.size(), 0u);
+    EXPECT_LT(one_adjacency.boundary_faces.size(), one.num_tets());
 }
 
 TEST(Tetrahedralize, MirroredMeshReportsInvertedCellsAndKeepsVolume) {
