@@ -483,6 +483,14 @@ TEST(Renderer, AskingForAlphaChangesNoBitOfThePicture) {
     });
 }
 
+// Whether `image` (over black) matches the reference ray caster's picture of the fixture.
+::testing::AssertionResult matches_reference(const Image& image, const Fixture& fx,
+                                             const TransferFunction& tf, const CameraFrame& frame,
+                                             const ImageBounds& bounds, const std::string& name) {
+    const Image reference = render_reference(fx.mesh, fx.scalar, tf, frame, Vec3(0.0));
+    return images_match(image, reference, Vec3f(0.0f), bounds, name);
+}
+
 // Cells whose scalar range the transfer function leaves clear are not drawn (cells_drawn counts
 // the others), and the picture still matches the reference ray caster, which integrates every
 // cell: here the opacity is zero below the wavy field's middle value.
@@ -504,10 +512,9 @@ TEST(Renderer, CellsTheTransferFunctionLeavesClearAreNotDrawn) {
     RenderStats stats;
     const Image image = render(fx, tf, frame, Integrator::kExact, Vec3(0.0), &stats);
     EXPECT_EQ(stats.cells_drawn, fx.mesh.num_tets() - clear);  // the whole mesh is in view
-    const Image reference = render_reference(fx.mesh, fx.scalar, tf, frame, Vec3(0.0));
-    EXPECT_TRUE(images_match(image, reference, Vec3f(0.0f),
-                             {90.4, 0.0005},  // measured 93.5 dB, 0.00014
-                             "clear_cells_exact"));
+    EXPECT_TRUE(matches_reference(image, fx, tf, frame,
+                                  {90.4, 0.0005},  // measured 93.5 dB, 0.00014
+                                  "clear_cells_exact"));
 }
 
 // Cells are composited front to back, and a pixel whose transmittance is spent (below 2^-24)
@@ -526,10 +533,9 @@ TEST(Renderer, SpentPixelsTakeNoMoreFragments) {
     EXPECT_EQ(thin_stats.cells_drawn, opaque_stats.cells_drawn);
     std::printf("fragments: %zu opaque, %zu thin\n", opaque_stats.fragments, thin_stats.fragments);
     EXPECT_LT(opaque_stats.fragments, thin_stats.fragments / 3);  // measured 5016 of 37635
-    const Image reference = render_reference(fx.mesh, fx.scalar, opaque, frame, Vec3(0.0));
-    EXPECT_TRUE(images_match(image, reference, Vec3f(0.0f),
-                             {96.0, 0.0004},  // measured 99.0 dB, 0.00006
-                             "spent_pixels_preintegrated"));
+    EXPECT_TRUE(matches_reference(image, fx, opaque, frame,
+                                  {96.0, 0.0004},  // measured 99.0 dB, 0.00006
+                                  "spent_pixels_preintegrated"));
 }
 
 // The fragments under perspective (four pixels of a row at once, denominators stepped along
