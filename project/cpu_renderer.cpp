@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <span>
 #include <vector>
 
@@ -171,15 +172,22 @@ std::vector<CellId> cells_not_clear(const TetMesh& mesh, std::span<const float> 
 }  // namespace
 
 double longest_edge(const TetMesh& mesh) {
+    std::mutex longest_mutex;
     double longest = 0.0;
-    for (CellId t = 0; t < mesh.num_real_tets(); ++t) {
-        const Tet& v = mesh.tet(t);
-        for (int a = 0; a < 4; ++a) {
-            for (int b = a + 1; b < 4; ++b) {
-                longest = std::max(longest, glm::length(mesh.point(v[a]) - mesh.point(v[b])));
+    parallel_for_chunks(0, mesh.num_real_tets(), 65536, [&](std::size_t begin, std::size_t end) {
+        double chunk_longest = 0.0;
+        for (std::size_t t = begin; t < end; ++t) {
+            const Tet& v = mesh.tet(static_cast<CellId>(t));
+            for (int a = 0; a < 4; ++a) {
+                for (int b = a + 1; b < 4; ++b) {
+                    chunk_longest =
+                        std::max(chunk_longest, glm::length(mesh.point(v[a]) - mesh.point(v[b])));
+                }
             }
         }
-    }
+        const std::lock_guard<std::mutex> lock(longest_mutex);
+        longest = std::max(longest, chunk_longest);
+    });
     return longest;
 }
 
