@@ -142,8 +142,8 @@ __attribute__((target_clones("avx2", "default"))) void find_perspective_fragment
             for (int k = 0; k < 4; ++k) {
                 const Double4 den = den_row[k] + setup.den_b[k] * column;
                 const Double4 u = setup.numerator[k] / den;
-                lo = (den < 0) & (u > lo) ? u : lo;
-                hi = (den > 0) & (u < hi) ? u : hi;
+                lo = ((den < 0) & (u > lo)) ? u : lo;
+                hi = ((den > 0) & (u < hi)) ? u : hi;
                 if (setup.parallel_misses[k]) missed |= den == 0;
             }
             Double4 length;
