@@ -220,7 +220,7 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats,
 
     Image image(w, h, Vec3f(in.background));
     if (in.opaque_color) image = *in.opaque_color;
-    // The volume's opacity per pixel, when asked for: composited with the same over operator.
+    // The volume's opacity per pixel, when asked for: one less the transmittance left.
     if (alpha) alpha->assign(static_cast<std::size_t>(w) * h, 0.0f);
     float* const opacity = alpha ? alpha->data() : nullptr;
     std::atomic<std::size_t> fragments{0};
@@ -276,9 +276,9 @@ Image render_projected_tetrahedra(const RenderInputs& in, RenderStats* stats,
                 }
                 continue;
             }
-            // The cell's segments in this tile first (but at pixels already saturated), then
-            // shaded together (the shader overlaps their lookups) and composited: each pixel
-            // appears once per cell, so the order of compositing per pixel is the cells' order.
+            // The cell's segments in this tile first (but at pixels whose transmittance is spent),
+            // then shaded together (the shader overlaps their lookups) and composited: each
+            // pixel appears once per cell, so the order of compositing per pixel is the cells'.
             int count = 0;
             for_each_fragment(
                 cell, b, rays, w, max_depth,
