@@ -170,8 +170,8 @@ __attribute__((target_clones("avx2", "default"))) void find_perspective_fragment
             __builtin_memcpy(hit, &found, sizeof found);
             const int last = std::min(3, x1 - x);
             for (int l = 0; l <= last; ++l) {
-                out.x[count] = static_cast<std::uint16_t>(x + l);
-                out.y[count] = static_cast<std::uint16_t>(y);
+                out.x[count] = static_cast<std::uint8_t>(i + l);
+                out.y[count] = static_cast<std::uint8_t>(j);
                 out.t_in[count] = lanes[0][l];
                 out.t_out[count] = lanes[1][l];
                 out.s_in[count] = lanes[2][l];

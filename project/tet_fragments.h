@@ -23,6 +23,7 @@
 namespace tr {
 
 inline constexpr int kFragmentTile = 32;  // tiles are kFragmentTile x kFragmentTile pixels
+static_assert(kFragmentTile <= 256, "TileFragments keeps a pixel's place in the tile in a byte");
 
 // Cells binned into screen tiles: each tile's list holds indices into the `cells` given, in
 // their order (so compositing in a visibility order stays in order within a tile).
@@ -127,10 +128,11 @@ class CellFragments {
     double s_eye_ = 0;
 };
 
-// The fragments of one cell in one tile, in the order for_each_fragment gives them.
+// The fragments of one cell in one tile, in the order for_each_fragment gives them; x, y are
+// within the tile (the picture's pixel is the tile's x0 + x, y0 + y).
 struct TileFragments {
     int count = 0;
-    std::uint16_t x[kFragmentTile * kFragmentTile], y[kFragmentTile * kFragmentTile];
+    std::uint8_t x[kFragmentTile * kFragmentTile], y[kFragmentTile * kFragmentTile];
     double t_in[kFragmentTile * kFragmentTile], t_out[kFragmentTile * kFragmentTile];
     double s_in[kFragmentTile * kFragmentTile], s_out[kFragmentTile * kFragmentTile];
 };
@@ -155,8 +157,8 @@ void for_each_fragment(const CellFragments& cell, const ScreenBox& box, const Ti
         TileFragments found;
         find_perspective_fragments(cell, x0, y0, x1, y1, rays, width, max_depth, found);
         for (int f = 0; f < found.count; ++f) {
-            fn(int{found.x[f]}, int{found.y[f]}, found.t_in[f], found.t_out[f], found.s_in[f],
-               found.s_out[f]);
+            fn(rays.x0 + found.x[f], rays.y0 + found.y[f], found.t_in[f], found.t_out[f],
+               found.s_in[f], found.s_out[f]);
         }
         return;
     }
